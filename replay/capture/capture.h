@@ -1,0 +1,63 @@
+#pragma once
+// Capture format v1 (captures/FORMAT.md): a folder with capture.json and EXR G-buffers.
+// Reading validates everything up front (JSON, matrices, paths, EXR headers of every frame), so a
+// replay never fails half-way through on a bad file. Errors are aor::InputError.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <nlohmann/json.hpp>
+
+#include "capture/input_error.h"
+
+namespace aor {
+
+struct CaptureFrame {
+  std::filesystem::path gbuffer;                  // absolute, inside the capture folder
+  std::optional<std::filesystem::path> reference; // absolute, inside the capture folder
+  glm::mat4 view{1.0f};                           // world -> view
+  glm::mat4 projection{1.0f};                     // view -> clip, perspective, depth [0,1]
+  bool cut = false;                               // camera cut before this frame
+};
+
+struct Capture {
+  std::filesystem::path folder;
+  std::string name;  // folder name, used for default output paths
+  int width = 0;
+  int height = 0;
+  std::vector<CaptureFrame> frames;
+  nlohmann::json scene = nlohmann::json::object();
+  // Channel layout, identical in every frame (checked when loading).
+  bool hasNormals = false;
+  bool hasDepth2 = false;
+};
+
+// Parses capture.json in `folder` and checks every referenced EXR header.
+Capture loadCapture(const std::filesystem::path& folder);
+
+struct GBuffer {
+  int width = 0, height = 0;
+  std::vector<float> depth;    // width*height, row 0 at the top
+  std::vector<float> normals;  // width*height*3 (xyz interleaved, world space); empty without normals
+  std::vector<float> depth2;   // width*height; empty without a second layer
+};
+
+GBuffer loadGBuffer(const Capture& capture, int frame);
+// Reference visibility (width*height, in [0,1]); std::nullopt when the frame has none.
+std::optional<std::vector<float>> loadReference(const Capture& capture, int frame);
+
+// Writing, used by the generator. Files go to a temporary folder that is renamed into place by
+// the caller-visible function only when everything was written.
+struct CaptureFrameData {
+  GBuffer gbuffer;
+  std::optional<std::vector<float>> reference;
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};
+  bool cut = false;
+};
+void writeCapture(const std::filesystem::path& folder, int width, int height,
+                  const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene);
+
+}  // namespace aor

@@ -1,0 +1,17 @@
+# Turns one .spv file into a C++ source defining the SPIR-V words as an array.
+file(READ ${SPV} bytes HEX)
+string(LENGTH "${bytes}" hex_length)
+math(EXPR word_count "${hex_length} / 8")
+set(words "")
+set(i 0)
+while(i LESS hex_length)
+  # SPIR-V is little-endian: reverse the four bytes of each word.
+  string(SUBSTRING "${bytes}" ${i} 8 w)
+  string(SUBSTRING "${w}" 6 2 b3)
+  string(SUBSTRING "${w}" 4 2 b2)
+  string(SUBSTRING "${w}" 2 2 b1)
+  string(SUBSTRING "${w}" 0 2 b0)
+  string(APPEND words "0x${b3}${b2}${b1}${b0}u,")
+  math(EXPR i "${i} + 8")
+endwhile()
+file(WRITE ${OUT} "#include <cstdint>\n#include <cstddef>\nnamespace aor::spirv {\nextern const uint32_t ${NAME}[] = {${words}};\nextern const size_t ${NAME}_words = ${word_count};\n}\n")

@@ -1,0 +1,2 @@
+// The arrays themselves are generated next to the .spv files in the build tree.
+#include "embedded_shaders.h"
