@@ -1,0 +1,69 @@
+// `aoreplay capture`: generate a synthetic capture (format v1) with Embree-traced G-buffers and,
+// optionally, a ray-traced reference.
+#include <unistd.h>
+
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "capture/input_error.h"
+#include "cli/commands.h"
+#include "cli/handlers.h"
+#include "generator/generator.h"
+
+namespace aor::cli {
+namespace {
+
+struct CaptureArgs {
+  gen::GeneratorOptions options;
+  std::string out;
+  std::string size = "320x180";
+  float radius = 0.0f;
+  bool noNormals = false;
+};
+
+std::pair<int, int> parseSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0)
+    throw InputError("", std::nullopt, "--size", fmt::format("'{}' is not WxH with positive sizes", text));
+  return {w, h};
+}
+
+int captureCommand(CaptureArgs& args) {
+  auto& o = args.options;
+  std::tie(o.width, o.height) = parseSize(args.size);
+  if (args.radius > 0.0f) o.radius = args.radius;
+  o.writeNormals = !args.noNormals;
+  bool tty = isatty(STDERR_FILENO);
+  o.progress = [tty](int done, int total) {
+    if (tty) fmt::print(stderr, "\rgenerating frame {}/{}{}", done, total, done == total ? "\n" : "");
+  };
+  gen::generateCapture(o, args.out);
+  fmt::print("capture: {} ({} {}x{}, {} frames, path {}, reference spp {})\n", args.out, o.scene, o.width, o.height,
+             o.frames, o.path, o.referenceSpp);
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerCaptureCommand(CLI::App& app) {
+  auto args = std::make_shared<CaptureArgs>();
+  auto* cmd = app.add_subcommand("capture", "generate a synthetic capture (Embree ray traced)");
+  cmd->add_option("scene", args->options.scene, "plane | pit | sphere | boxes | bunny | thin")->required();
+  cmd->add_option("--out", args->out, "capture folder to write")->required();
+  cmd->add_option("--size", args->size, "WxH")->capture_default_str();
+  cmd->add_option("--frames", args->options.frames, "number of frames")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--path", args->options.path, "orbit | dolly | static | cut | strafe")->capture_default_str();
+  cmd->add_option("--reference-spp", args->options.referenceSpp, "reference rays per pixel (0: no reference)")
+      ->check(CLI::Range(0, 1 << 20));
+  cmd->add_option("--radius", args->radius, "AO radius in world units (default: the scene's)");
+  cmd->add_flag("--reversed-z", args->options.reversedZ, "reversed depth (near 1, far 0)");
+  cmd->add_flag("--infinite-far", args->options.infiniteFar, "infinite far plane");
+  cmd->add_flag("--no-normals", args->noNormals, "depth-only capture (normals reconstructed on replay)");
+  cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0));
+  cmd->add_option("--seed", args->options.seed, "seed for scene layout and reference sampling");
+  handlers()["capture"] = [args] { return captureCommand(*args); };
+}
+
+}  // namespace aor::cli

@@ -1,0 +1,70 @@
+// `aoreplay graph`: prints the compiled render graph for a capture and settings (passes run and
+// culled with reasons, resources, lifetimes, aliasing, barriers) and writes it as Graphviz DOT.
+// Needs no GPU: the graph is built and compiled, never executed.
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/handlers.h"
+#include "cli/settings_options.h"
+#include "pipeline/ao_graph.h"
+#include "vk/context.h"
+
+namespace aor::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct GraphArgs {
+  std::string capture;
+  SettingsOptions settings;
+  std::string dot;
+};
+
+int graphCommand(const GraphArgs& args) {
+  Capture capture = loadCapture(args.capture);
+  AoSettings settings = args.settings.resolve(capture);
+  auto [begin, end] = args.settings.frameRange(capture);
+  bool temporalWanted = end - begin > 1 && settings.temporal > 0.0f;
+  // A steady-state frame: the second of the range when there is one, with history valid.
+  int index = temporalWanted ? begin + 1 : begin;
+  const auto& frame = capture.frames[size_t(index)];
+  FrameCamera camera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
+  const auto& prev = capture.frames[size_t(temporalWanted ? index - 1 : index)];
+  FrameCamera previous{prev.view, prev.projection, capture.width, capture.height, uint32_t(index)};
+  AoFrameInputs inputs{camera, previous, capture.hasNormals, temporalWanted, temporalWanted, settings};
+
+  VulkanContext noDevice;  // pipelines are created only when a pass executes, which never happens here
+  PassPipelines pipelines(noDevice);
+  GpuBuffer placeholder;
+  AoFrameBuffers buffers{&placeholder, capture.hasNormals ? &placeholder : nullptr, &placeholder};
+  auto frameGraph = buildAoFrameGraph(inputs, pipelines, nullptr, buffers);
+  auto compiled = frameGraph.graph.compile();
+
+  fmt::print("capture: {} ({}x{}), frame {} of replay {}:{}, settings: {}\n", capture.name, capture.width,
+             capture.height, index, begin, end, toJson(settings).dump());
+  fmt::print("{}", graph::describe(frameGraph.graph, compiled));
+  for (const auto& [pass, why] : frameGraph.notes) fmt::print("why {} is not needed: {}\n", pass, why);
+
+  fs::path dotPath = args.dot.empty() ? fs::path("out") / capture.name / "graph.dot" : fs::path(args.dot);
+  if (dotPath.has_parent_path()) fs::create_directories(dotPath.parent_path());
+  std::ofstream(dotPath) << graph::toDot(frameGraph.graph, compiled);
+  fmt::print("dot: {} (render with: dot -Tsvg {} -o graph.svg)\n", dotPath.string(), dotPath.string());
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerGraphCommand(CLI::App& app) {
+  auto args = std::make_shared<GraphArgs>();
+  auto* cmd = app.add_subcommand("graph", "print the compiled render graph and write it as Graphviz DOT");
+  cmd->add_option("capture", args->capture, "capture folder")->required();
+  args->settings.add(*cmd);
+  cmd->add_option("--dot", args->dot, "DOT output file (default out/<capture name>/graph.dot)");
+  handlers()["graph"] = [args] { return graphCommand(*args); };
+}
+
+}  // namespace aor::cli

@@ -1,0 +1,40 @@
+// aoreplay: replays AO captures through the render graph and reports time, error and stability.
+// Exit codes: 0 success, 1 failed run (e.g. validation messages), 2 bad usage or bad input,
+// 3 no usable Vulkan device.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "capture/input_error.h"
+#include "cli/commands.h"
+#include "vk/vk_check.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"aoreplay: deterministic replay and profiling of screen-space ambient occlusion captures"};
+  app.require_subcommand(1);
+  aor::cli::registerRunCommand(app);
+  aor::cli::registerCaptureCommand(app);
+  aor::cli::registerGraphCommand(app);
+  aor::cli::registerDevicesCommand(app);
+  try {
+    app.parse(argc, argv);
+    return aor::cli::runSelected(app);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return aor::cli::kExitBadInput;
+  } catch (const aor::InputError& e) {
+    fmt::print(stderr, "aoreplay: error: {}\n", e.what());
+    return aor::cli::kExitBadInput;
+  } catch (const aor::NoDeviceError& e) {
+    fmt::print(stderr, "aoreplay: no usable Vulkan device: {}\n", e.what());
+    return aor::cli::kExitNoDevice;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "aoreplay: failed: {}\n", e.what());
+    return aor::cli::kExitFailed;
+  }
+}

@@ -1,0 +1,122 @@
+// `aoreplay run`: replay a capture, time each pass, write images, report.json and trace.json.
+#include <unistd.h>
+
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/handlers.h"
+#include "cli/settings_options.h"
+#include "pipeline/replayer.h"
+#include "report/output_directory.h"
+#include "report/run_outputs.h"
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace aor::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunArgs {
+  std::string capture;
+  SettingsOptions settings;
+  int repeat = 1;
+  int warmup = 0;
+  std::string out;
+  std::string device;
+  bool validate = false;
+  bool noImages = false;
+  bool keepHistoryOnCut = false;
+};
+
+// Owns the Vulkan context for one command so it is destroyed (and its last validation messages
+// counted) before the command decides whether it succeeded.
+struct ContextScope {
+  VulkanContext vk;
+  explicit ContextScope(const ContextOptions& options) { createContext(vk, options); }
+  ~ContextScope() { destroyContext(vk); }
+};
+
+void printProgress(int done, int total) {
+  if (!isatty(STDERR_FILENO)) return;
+  fmt::print(stderr, "\rreplaying frame {}/{}", done, total);
+  if (done == total) fmt::print(stderr, "\n");
+}
+
+int runCommand(const RunArgs& args) {
+  Capture capture = loadCapture(args.capture);
+  ReplayOptions options;
+  options.settings = args.settings.resolve(capture);
+  std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
+  options.repeat = args.repeat;
+  options.warmup = args.warmup;
+  options.keepHistoryOnCut = args.keepHistoryOnCut;
+  options.progress = printProgress;
+  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out));
+
+  ReplayResult result;
+  size_t validationMessages = 0;
+  {
+    ContextScope context({args.device, args.validate});
+    result = replayCapture(context.vk, capture, options, [&](const FrameOutput& frame) {
+      if (!args.noImages) writeFrameImages(out.staging(), frame);
+    });
+    vkDeviceWaitIdle(context.vk.device);
+    destroyContext(context.vk);
+    validationMessages = context.vk.validationMessageCount();
+  }
+  auto report = buildReport(capture, options, result);
+  report["validation"] = {{"enabled", args.validate}, {"messages", validationMessages}};
+  writeJson(out.staging() / "report.json", report);
+  writeJson(out.staging() / "trace.json", buildTrace(result));
+
+  fmt::print("device: {} ({})\n", result.device.name, result.device.driver);
+  fmt::print("capture: {} ({}x{}, frames {}:{}), settings: {}\n", capture.name, capture.width, capture.height,
+             options.frameBegin, options.frameEnd, toJson(options.settings).dump());
+  fmt::print("{}", passTable(result));
+  for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
+  if (args.validate && validationMessages > 0) {
+    fmt::print(stderr, "aoreplay: {} validation message(s); the run failed and wrote no results\n", validationMessages);
+    return kExitFailed;
+  }
+  out.commit();
+  if (args.validate) fmt::print("validation: 0 messages (synchronization validation on)\n");
+  fmt::print("outputs: {}/ (ao/NNNN.exr, ao/NNNN.png{}, report.json, trace.json)\n", out.finalPath().string(),
+             args.noImages ? " skipped by --no-images" : "");
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerRunCommand(CLI::App& app) {
+  auto args = std::make_shared<RunArgs>();
+  auto* cmd = app.add_subcommand("run", "replay a capture through the GTAO render graph");
+  cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
+  args->settings.add(*cmd);
+  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000));
+  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame before timing")->check(CLI::Range(0, 100000));
+  cmd->add_option("--out", args->out, "output folder (default out/<capture name>/)");
+  cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
+  cmd->add_flag("--validate", args->validate, "Khronos validation + synchronization validation; any message fails");
+  cmd->add_flag("--no-images", args->noImages, "skip writing per-frame EXR/PNG");
+  cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
+                "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")
+      ->group("");
+  handlers()["run"] = [args] { return runCommand(*args); };
+}
+
+void registerDevicesCommand(CLI::App& app) {
+  app.add_subcommand("devices", "list Vulkan devices (index, name, driver)");
+  handlers()["devices"] = [] {
+    auto devices = listDevices();
+    if (devices.empty()) throw NoDeviceError("no Vulkan device found");
+    for (const auto& d : devices)
+      fmt::print("{}: {} ({}, Vulkan {}){}\n", d.index, d.name, d.driver, d.apiVersion, d.isLavapipe ? " [default]" : "");
+    return kExitOk;
+  };
+}
+
+}  // namespace aor::cli

@@ -1,0 +1,65 @@
+#include "cpu/gtao_cpu.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include "gtao.h"
+#include "linearize_depth.h"
+
+namespace aor {
+
+namespace shader {
+namespace {
+
+// Everything gtao_pixel.glsl expects from its includer, as members.
+struct GtaoCpuPixel {
+  GtaoConstants pc;
+  int kSlices;
+  int kSteps;
+  bool kBent;
+  const std::vector<float>* distance;
+  const std::vector<vec3>* viewNormals;
+
+  float gtaoLoadDistance(ivec2 pixel) const { return (*distance)[size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x)]; }
+  vec3 gtaoLoadViewNormal(ivec2 pixel) const {
+    return (*viewNormals)[size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x)];
+  }
+#include "gtao_pixel.glsl"
+};
+
+}  // namespace
+}  // namespace shader
+
+CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings) {
+  auto params = projectionParams(camera.projection, camera.width, camera.height);
+  size_t pixels = size_t(camera.width) * size_t(camera.height);
+  std::vector<float> distance(pixels);
+  std::vector<glm::vec3> normals(pixels, glm::vec3(0.0f));
+  glm::mat3 worldToView(camera.view);
+  for (size_t i = 0; i < pixels; ++i) {
+    distance[i] = shader::linearViewDistance(gbuffer.depth[i], params.projection22, params.projection32, params.reversedDepth);
+    if (gbuffer.normals.empty()) continue;
+    // The GPU receives normals as half floats: quantise the same way.
+    glm::vec3 n;
+    for (int c = 0; c < 3; ++c) n[c] = glm::unpackHalf1x16(glm::packHalf1x16(gbuffer.normals[3 * i + size_t(c)]));
+    n = worldToView * n;
+    float len2 = glm::dot(n, n);
+    normals[i] = len2 > 1e-12f ? n * glm::inversesqrt(len2) : glm::vec3(0.0f);
+  }
+  shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
+                             &distance, &normals};
+  CpuAoImage out;
+  out.width = camera.width;
+  out.height = camera.height;
+  out.visibility.resize(pixels);
+  if (settings.bent) out.bent.resize(pixels);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      glm::vec3 bent;
+      size_t i = size_t(y) * size_t(camera.width) + size_t(x);
+      out.visibility[i] = pixel.gtaoPixel(glm::ivec2(x, y), bent);
+      if (settings.bent) out.bent[i] = bent;
+    }
+  return out;
+}
+
+}  // namespace aor

@@ -1,0 +1,68 @@
+// Passes 2 and 3 of seed 000: spatial bilateral blur and temporal reprojection with history.
+#include "passes/passes.h"
+#include "pipeline/pass_context.h"
+#include "spatial_denoise.h"
+#include "temporal_denoise.h"
+
+namespace aor {
+
+graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
+                                 const AoSettings& settings, graph::ResourceId ao, graph::ResourceId distance) {
+  bool bent = settings.bent != 0;
+  shader::SpatialConstants constants{};
+  constants.size = {camera.width, camera.height};
+  auto blurred = graph.createImage("ao_blurred", {uint32_t(camera.width), uint32_t(camera.height), aoFormat(bent)});
+  graph.addPass(
+      "spatial",
+      [&](graph::PassBuilder& b) {
+        b.read(ao);
+        b.read(distance);
+        b.write(blurred);
+      },
+      [&pipelines, bent, constants, ao, distance, blurred](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.spatial(bent), {{ao}, {distance}, {blurred, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+                        uint32_t(constants.size.x), uint32_t(constants.size.y));
+      });
+  return blurred;
+}
+
+graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
+                                  const AoSettings& settings, const TemporalInputs& in) {
+  bool bent = settings.bent != 0;
+  bool hasHistory = in.historyAo != graph::kNoResource && in.historyDistance != graph::kNoResource;
+  auto params = projectionParams(camera.projection, camera.width, camera.height);
+  const auto& previous = in.previousCamera.projection;
+  shader::TemporalConstants constants{};
+  constants.viewToPreviousView = in.previousCamera.view * glm::inverse(camera.view);
+  constants.previousProjection = {previous[0][0], previous[1][1], previous[2][0], previous[2][1]};
+  constants.ndcToViewMul = params.ndcToViewMul;
+  constants.ndcToViewAdd = params.ndcToViewAdd;
+  constants.invSize = {1.0f / float(camera.width), 1.0f / float(camera.height)};
+  constants.size = {camera.width, camera.height};
+  constants.blend = settings.temporal;
+  constants.depthTolerance = shader::kTemporalDepthTolerance;
+  // Without history the shader variant never reads bindings 2-3; the current inputs stand in so
+  // every binding is valid and no pass declares a read of a history image that does not exist.
+  graph::ResourceId historyAo = hasHistory ? in.historyAo : in.current;
+  graph::ResourceId historyDistance = hasHistory ? in.historyDistance : in.distance;
+  graph.addPass(
+      "temporal",
+      [&](graph::PassBuilder& b) {
+        b.read(in.current);
+        b.read(in.distance);
+        if (hasHistory) {
+          b.read(in.historyAo);
+          b.read(in.historyDistance);
+        }
+        b.write(in.target);
+      },
+      [&pipelines, bent, hasHistory, constants, in, historyAo, historyDistance](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.temporal(bent, hasHistory),
+                        {{in.current}, {in.distance}, {historyAo, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, true},
+                         {historyDistance}, {in.target, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                        &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
+      });
+  return in.target;
+}
+
+}  // namespace aor

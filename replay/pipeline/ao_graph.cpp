@@ -1,0 +1,72 @@
+#include "pipeline/ao_graph.h"
+
+#include <string>
+
+#include "pipeline/graph_resources.h"
+
+namespace aor {
+namespace {
+
+graph::ImageState stateOf(const GraphResources* resources, const std::string& name) {
+  return resources ? resources->state(name) : graph::ImageState{};
+}
+
+}  // namespace
+
+AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines, const GraphResources* resources,
+                               const AoFrameBuffers& buffers) {
+  AoFrameGraph frame;
+  auto& g = frame.graph;
+  const auto& cam = in.camera;
+  const auto& settings = in.settings;
+  uint32_t w = uint32_t(cam.width), h = uint32_t(cam.height);
+  bool bent = settings.bent != 0;
+
+  auto depth = g.importImage(kDepthImage, {w, h, VK_FORMAT_R32_SFLOAT}, stateOf(resources, kDepthImage));
+  auto normals = in.hasNormals ? g.importImage(kNormalsImage, {w, h, VK_FORMAT_R16G16B16A16_SFLOAT},
+                                               stateOf(resources, kNormalsImage))
+                               : graph::kNoResource;
+  addUploadPass(g, *buffers.depthUpload, depth, buffers.normalsUpload, normals);
+
+  // With a temporal pass the linear distance is kept as history: the depth test of its second
+  // rejection layer needs last frame's.
+  graph::HistoryPair distanceHistory, aoHistory;
+  graph::ResourceId distance;
+  if (in.temporalWanted) {
+    std::string prev = std::string(kDistanceHistory) + ".previous", cur = std::string(kDistanceHistory) + ".current";
+    distanceHistory = g.createHistory(kDistanceHistory, {w, h, VK_FORMAT_R32_SFLOAT}, in.historyValid,
+                                      stateOf(resources, prev), stateOf(resources, cur));
+    distance = distanceHistory.current;
+  } else {
+    distance = g.createImage("view_distance", {w, h, VK_FORMAT_R32_SFLOAT});
+  }
+  addLinearizeDepthPass(g, pipelines, cam, depth, distance);
+
+  auto reconstructed = addReconstructNormalsPass(g, pipelines, cam, distance);
+  GtaoInputs gtaoInputs{distance, in.hasNormals ? normals : reconstructed, !in.hasNormals};
+  auto noisy = addGtaoPass(g, pipelines, cam, settings, gtaoInputs);
+  auto blurred = addSpatialPass(g, pipelines, cam, settings, noisy, distance);
+  auto denoised = settings.spatial ? blurred : noisy;
+  frame.finalAo = denoised;
+
+  if (in.temporalWanted) {
+    std::string prev = std::string(kAoHistory) + ".previous", cur = std::string(kAoHistory) + ".current";
+    aoHistory = g.createHistory(kAoHistory, {w, h, aoFormat(bent)}, in.historyValid, stateOf(resources, prev),
+                                stateOf(resources, cur));
+    TemporalInputs t{denoised, distance, aoHistory.previous, distanceHistory.previous, aoHistory.current,
+                     in.previousCamera};
+    frame.finalAo = addTemporalPass(g, pipelines, cam, settings, t);
+  } else {
+    // Declared anyway so the compiled graph shows it culled, with the reason.
+    auto filtered = g.createImage("ao_filtered", {w, h, aoFormat(bent)});
+    TemporalInputs t{denoised, distance, graph::kNoResource, graph::kNoResource, filtered, in.previousCamera};
+    addTemporalPass(g, pipelines, cam, settings, t);
+    frame.notes["temporal"] = settings.temporal <= 0.0f ? "temporal=0" : "single-frame replay: no history";
+  }
+  if (!settings.spatial) frame.notes["spatial"] = "spatial=0";
+  if (in.hasNormals) frame.notes["reconstruct_normals"] = "the capture has normals";
+  addReadbackPass(g, frame.finalAo, *buffers.readback);
+  return frame;
+}
+
+}  // namespace aor

@@ -1,0 +1,148 @@
+#include "pipeline/graph_resources.h"
+
+#include <fmt/format.h>
+
+#include "vk/context.h"
+
+namespace aor {
+namespace {
+
+constexpr VkImageUsageFlags kPersistentUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+
+// "ao_history.current" -> {"ao_history", true}
+std::pair<std::string, bool> splitHistoryName(const std::string& name) {
+  auto dot = name.rfind('.');
+  return {name.substr(0, dot), name.substr(dot + 1) == "current"};
+}
+
+}  // namespace
+
+GraphResources::~GraphResources() {
+  releaseTransients();
+  for (auto& [name, p] : persistent_) destroyImage(vk_, p.image);
+}
+
+std::string GraphResources::physicalKey(const graph::ResourceDecl& decl) const {
+  if (decl.kind != graph::ResourceKind::History) return decl.name;
+  auto [base, isCurrent] = splitHistoryName(decl.name);
+  auto parity = historyParity_.count(base) ? historyParity_.at(base) : 0;
+  return fmt::format("{}#{}", base, isCurrent ? parity : 1 - parity);
+}
+
+graph::ImageState GraphResources::state(const std::string& resourceName) const {
+  bool history = resourceName.ends_with(".current") || resourceName.ends_with(".previous");
+  graph::ResourceDecl decl{resourceName, {}, history ? graph::ResourceKind::History : graph::ResourceKind::Imported, {}};
+  auto it = persistent_.find(physicalKey(decl));
+  return it == persistent_.end() ? graph::ImageState{} : it->second.state;
+}
+
+GraphResources::Persistent& GraphResources::persistent(const graph::ResourceDecl& decl) {
+  auto& p = persistent_[physicalKey(decl)];
+  const auto& d = decl.desc;
+  if (p.image.image && (p.image.width != d.width || p.image.height != d.height || p.image.format != d.format)) {
+    destroyImage(vk_, p.image);
+    p = {};
+  }
+  if (!p.image.image) {
+    p.image = createImage(vk_, d.width, d.height, d.format, kPersistentUsage);
+    p.bytes = graph::imageBytes(d);
+  }
+  return p;
+}
+
+std::vector<const GpuImage*> GraphResources::prepare(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
+  prepareTransients(graph, compiled);
+  std::vector<const GpuImage*> images(graph.resources().size(), nullptr);
+  for (graph::ResourceId id = 0; id < images.size(); ++id) {
+    const auto& decl = graph.resources()[id];
+    if (!compiled.resources[id].used) continue;
+    images[id] = decl.kind == graph::ResourceKind::Transient ? &transients_.at(decl.name) : &persistent(decl).image;
+  }
+  return images;
+}
+
+void GraphResources::prepareTransients(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
+  std::string signature;
+  for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {
+    const auto& decl = graph.resources()[id];
+    const auto& res = compiled.resources[id];
+    if (decl.kind != graph::ResourceKind::Transient || !res.used) continue;
+    signature += fmt::format("{}:{}x{}:{}:{}:{};", decl.name, decl.desc.width, decl.desc.height, int(decl.desc.format),
+                             res.usage, res.memorySlot);
+  }
+  if (signature == transientSignature_) return;
+  releaseTransients();
+  transientSignature_ = signature;
+
+  struct SlotNeed {
+    VkDeviceSize size = 0, alignment = 1;
+    uint32_t typeBits = ~0u;
+  };
+  std::vector<SlotNeed> needs(compiled.slots.size());
+  std::vector<std::pair<graph::ResourceId, GpuImage>> created;
+  for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {
+    const auto& decl = graph.resources()[id];
+    const auto& res = compiled.resources[id];
+    if (decl.kind != graph::ResourceKind::Transient || !res.used) continue;
+    GpuImage image = createImageUnbound(vk_, decl.desc.width, decl.desc.height, decl.desc.format, res.usage);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(vk_.device, image.image, &req);
+    auto& need = needs.at(size_t(res.memorySlot));
+    need.size = std::max(need.size, req.size);
+    need.alignment = std::max(need.alignment, req.alignment);
+    need.typeBits &= req.memoryTypeBits;
+    created.emplace_back(id, image);
+  }
+  for (const auto& need : needs) slots_.push_back(allocateDeviceMemory(vk_, need.size, need.typeBits));
+  for (auto& [id, image] : created) {
+    bindImage(vk_, image, slots_[size_t(compiled.resources[id].memorySlot)].memory, 0);
+    transients_[graph.resources()[id].name] = image;
+  }
+}
+
+void GraphResources::releaseTransients() {
+  for (auto& [name, image] : transients_) destroyImage(vk_, image);  // aliased images own no memory
+  for (auto& slot : slots_) freeMemory(vk_, slot);
+  transients_.clear();
+  slots_.clear();
+  transientSignature_.clear();
+}
+
+void GraphResources::keepFinalStates(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
+  for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {
+    const auto& decl = graph.resources()[id];
+    if (decl.kind == graph::ResourceKind::Transient || !compiled.resources[id].used) continue;
+    persistent_.at(physicalKey(decl)).state = compiled.resources[id].finalState;
+  }
+}
+
+void GraphResources::swapHistory() {
+  for (auto& [key, p] : persistent_) {
+    auto hash = key.rfind('#');
+    if (hash == std::string::npos) continue;
+    historyParity_.try_emplace(key.substr(0, hash), 0);
+  }
+  for (auto& [base, parity] : historyParity_) parity = 1 - parity;
+}
+
+void GraphResources::dropHistory() {
+  for (auto it = persistent_.begin(); it != persistent_.end();) {
+    if (it->first.find('#') != std::string::npos) {
+      destroyImage(vk_, it->second.image);
+      it = persistent_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  historyParity_.clear();
+}
+
+uint64_t GraphResources::allocatedBytes() const {
+  uint64_t bytes = 0;
+  for (const auto& [name, p] : persistent_) bytes += p.bytes;
+  for (const auto& slot : slots_) bytes += slot.size;
+  return bytes;
+}
+
+}  // namespace aor

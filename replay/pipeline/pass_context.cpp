@@ -1,0 +1,45 @@
+#include "pipeline/pass_context.h"
+
+#include <stdexcept>
+
+#include "common.h"
+
+namespace aor::graph {
+
+const GpuImage& PassContext::image(ResourceId id) const {
+  if (id >= images.size() || !images[id]) throw std::logic_error("pass touched a resource it did not declare");
+  return *images[id];
+}
+
+}  // namespace aor::graph
+
+namespace aor {
+
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<DispatchImage> images,
+                     const void* pushConstants, uint32_t width, uint32_t height) {
+  std::vector<VkDescriptorImageInfo> infos;
+  infos.reserve(images.size());
+  std::vector<VkWriteDescriptorSet> writes;
+  uint32_t binding = 0;
+  for (const auto& d : images) {
+    bool storage = d.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    VkSampler sampler = storage ? VK_NULL_HANDLE : (d.linearFilter ? ctx.vk.linearSampler : ctx.vk.nearestSampler);
+    infos.push_back({sampler, ctx.image(d.resource).view,
+                     storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstBinding = binding++;
+    write.descriptorCount = 1;
+    write.descriptorType = d.type;
+    write.pImageInfo = &infos.back();
+    writes.push_back(write);
+  }
+  vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+  ctx.vk.cmdPushDescriptorSet(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, uint32_t(writes.size()),
+                              writes.data());
+  if (pipeline.pushConstantSize)
+    vkCmdPushConstants(ctx.cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline.pushConstantSize, pushConstants);
+  uint32_t groups = shader::kWorkgroupSize;
+  vkCmdDispatch(ctx.cmd, (width + groups - 1) / groups, (height + groups - 1) / groups, 1);
+}
+
+}  // namespace aor

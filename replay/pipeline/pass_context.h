@@ -1,0 +1,37 @@
+#pragma once
+// What a pass's execute callback gets from the executor: the command buffer and the physical
+// image of every graph resource. Passes record only their own work; barriers are the executor's.
+#include <initializer_list>
+#include <vector>
+
+#include "graph/render_graph.h"
+#include "vk/context.h"
+#include "vk/resources.h"
+
+namespace aor::graph {
+
+struct PassContext {
+  VulkanContext& vk;
+  VkCommandBuffer cmd;
+  std::vector<const GpuImage*> images;  // indexed by ResourceId; null for unused resources
+  const GpuImage& image(ResourceId id) const;
+};
+
+}  // namespace aor::graph
+
+namespace aor {
+
+// One descriptor of a compute dispatch: sampled images use texelFetch/textureLod, storage images
+// are written.
+struct DispatchImage {
+  graph::ResourceId resource;
+  VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  bool linearFilter = false;
+};
+
+// Binds `pipeline`, pushes the descriptors (binding i = images[i]) and push constants, and
+// dispatches one 8x8 workgroup per 8x8 pixel tile.
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<DispatchImage> images,
+                     const void* pushConstants, uint32_t width, uint32_t height);
+
+}  // namespace aor

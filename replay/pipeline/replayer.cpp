@@ -1,0 +1,208 @@
+#include "pipeline/replayer.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <future>
+
+#include <fmt/format.h>
+#include <glm/gtc/packing.hpp>
+
+#include "pipeline/ao_graph.h"
+#include "pipeline/graph_executor.h"
+#include "pipeline/graph_resources.h"
+
+namespace aor {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+struct DecodedFrame {
+  GBuffer gbuffer;
+  double decodeMs = 0;
+};
+
+// Host-visible staging: G-buffer uploads and the read-back of the result. Destroyed in one place.
+struct StagingBuffers {
+  VulkanContext& vk;
+  GpuBuffer depth, normals, readback;
+  StagingBuffers(VulkanContext& v, const Capture& capture, bool bent) : vk(v) {
+    VkDeviceSize pixels = VkDeviceSize(capture.width) * VkDeviceSize(capture.height);
+    depth = createHostBuffer(vk, pixels * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    if (capture.hasNormals) normals = createHostBuffer(vk, pixels * 4 * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    readback = createHostBuffer(vk, pixels * graph::bytesPerPixel(aoFormat(bent)), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  }
+  ~StagingBuffers() {
+    destroyBuffer(vk, depth);
+    destroyBuffer(vk, normals);
+    destroyBuffer(vk, readback);
+  }
+};
+
+int64_t stageDepth(const GBuffer& g, GpuBuffer& target) {
+  std::memcpy(target.mapped, g.depth.data(), g.depth.size() * sizeof(float));
+  int64_t invalid = 0;
+  for (float d : g.depth) invalid += !(d >= 0.0f && d <= 1.0f);  // NaN fails both comparisons
+  return invalid;
+}
+
+void stageNormals(const GBuffer& g, GpuBuffer& target) {
+  auto* out = static_cast<uint16_t*>(target.mapped);
+  size_t pixels = g.normals.size() / 3;
+  for (size_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < 3; ++c) out[4 * i + size_t(c)] = glm::packHalf1x16(g.normals[3 * i + size_t(c)]);
+    out[4 * i + 3] = 0;
+  }
+}
+
+FrameOutput readResult(const GpuBuffer& readback, int index, int width, int height, bool bent) {
+  FrameOutput out;
+  out.index = index;
+  out.width = width;
+  out.height = height;
+  size_t pixels = size_t(width) * size_t(height);
+  const auto* halves = static_cast<const uint16_t*>(readback.mapped);
+  out.visibility.resize(pixels);
+  if (bent) out.bent.resize(pixels * 3);
+  for (size_t i = 0; i < pixels; ++i) {
+    if (!bent) {
+      out.visibility[i] = glm::unpackHalf1x16(halves[i]);
+      continue;
+    }
+    for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = glm::unpackHalf1x16(halves[4 * i + c]);
+    out.visibility[i] = glm::unpackHalf1x16(halves[4 * i + 3]);
+  }
+  return out;
+}
+
+struct HistoryTracker {
+  bool exists = false;
+  int width = 0, height = 0;
+  AoSettings settings;
+  FrameCamera camera;
+
+  // Why the previous frame's output must not be blended into this one; empty when it may.
+  std::string resetReason(const CaptureFrame& frame, int width, int height, const AoSettings& settings, bool temporalWanted,
+                          bool keepHistoryOnCut) const {
+    if (!temporalWanted) return settings.temporal <= 0.0f ? "temporal=0" : "single-frame replay";
+    if (!exists) return "first frame";
+    if (frame.cut && !keepHistoryOnCut) return "cut";
+    if (width != this->width || height != this->height) return "size change";
+    if (!(settings == this->settings)) return "settings changed";
+    return {};
+  }
+};
+
+}  // namespace
+
+AoSettings settingsForCapture(const Capture& capture, const AoSettings& base, bool radiusGiven) {
+  AoSettings s = base;
+  if (!radiusGiven && capture.scene.contains("ao_radius") && capture.scene["ao_radius"].is_number()) {
+    double r = capture.scene["ao_radius"].get<double>();
+    if (!(r > 0.0 && std::isfinite(r)))
+      throw InputError((capture.folder / "capture.json").string(), std::nullopt, "scene.ao_radius",
+                       fmt::format("must be a positive number, got {}", r));
+    s.radius = float(r);
+  }
+  return s;
+}
+
+ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink) {
+  int total = int(capture.frames.size());
+  int begin = options.frameBegin, end = options.frameEnd < 0 ? total : options.frameEnd;
+  if (begin < 0 || begin >= end || end > total)
+    throw InputError((capture.folder / "capture.json").string(), std::nullopt, "--frames",
+                     fmt::format("range {}:{} is not inside the capture's {} frames (half-open A:B with 0 <= A < B <= {})",
+                                 begin, end, total, total));
+  const auto& settings = options.settings;
+  bool bent = settings.bent != 0;
+  bool temporalWanted = end - begin > 1 && settings.temporal > 0.0f;
+
+  ReplayResult result;
+  result.device = vk.info;
+  result.settings = settings;
+  auto replayStart = Clock::now();
+
+  PassPipelines pipelines(vk);
+  GraphResources resources(vk);
+  GraphExecutor executor(vk);
+  StagingBuffers staging(vk, capture, bent);
+  AoFrameBuffers buffers{&staging.depth, capture.hasNormals ? &staging.normals : nullptr, &staging.readback};
+
+  auto decode = [&capture](int index) {
+    auto t = Clock::now();
+    DecodedFrame d{loadGBuffer(capture, index), 0};
+    d.decodeMs = msSince(t);
+    return d;
+  };
+  auto next = std::async(std::launch::async, decode, begin);
+  HistoryTracker history;
+
+  for (int index = begin; index < end; ++index) {
+    FrameRecord record;
+    record.index = index;
+    record.hostStartMs = msSince(replayStart);
+    DecodedFrame decoded = next.get();
+    record.decodeMs = decoded.decodeMs;
+    if (index + 1 < end) next = std::async(std::launch::async, decode, index + 1);
+
+    auto t = Clock::now();
+    record.invalidDepthPixels = stageDepth(decoded.gbuffer, staging.depth);
+    if (capture.hasNormals) stageNormals(decoded.gbuffer, staging.normals);
+    record.uploadMs = msSince(t);
+
+    const auto& frame = capture.frames[size_t(index)];
+    FrameCamera camera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
+    record.resetReason = history.resetReason(frame, capture.width, capture.height, settings, temporalWanted,
+                                             options.keepHistoryOnCut);
+    record.historyValid = record.resetReason.empty();
+    if (history.exists && (history.width != capture.width || history.height != capture.height)) resources.dropHistory();
+
+    AoFrameInputs inputs{camera, history.camera, capture.hasNormals, temporalWanted, record.historyValid, settings};
+    t = Clock::now();
+    for (int run = 0; run < options.warmup + options.repeat; ++run) {
+      // Rebuilt per run: each run starts from the states the previous one left.
+      auto frameGraph = buildAoFrameGraph(inputs, pipelines, &resources, buffers);
+      auto compiled = frameGraph.graph.compile();
+      executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
+      auto times = executor.submitAndWait();
+      resources.keepFinalStates(frameGraph.graph, compiled);
+      if (run < options.warmup) continue;
+      if (record.passes.empty())
+        for (const auto& p : compiled.passes) record.passes.push_back({frameGraph.graph.passes()[p.pass].name, 0, {}});
+      for (size_t i = 0; i < times.size(); ++i) {
+        record.passes[i].startMs = times[i].startMs;
+        record.passes[i].durationsMs.push_back(times[i].durationMs);
+      }
+      if (index + 1 == end && run + 1 == options.warmup + options.repeat) {
+        result.culled.clear();
+        for (const auto& c : compiled.culled) {
+          const auto& name = frameGraph.graph.passes()[c.pass].name;
+          auto note = frameGraph.notes.find(name);
+          result.culled.push_back({name, note == frameGraph.notes.end() ? c.reason : note->second + "; " + c.reason});
+        }
+        result.graphDescription = graph::describe(frameGraph.graph, compiled);
+        result.peakGpuBytes = compiled.peakBytes();
+        result.unaliasedGpuBytes = compiled.unaliasedTransientBytes + compiled.persistentBytes;
+      }
+    }
+    record.gpuWallMs = msSince(t);
+
+    t = Clock::now();
+    FrameOutput output = readResult(staging.readback, index, capture.width, capture.height, bent);
+    record.readbackMs = msSince(t);
+    t = Clock::now();
+    if (sink) sink(output);
+    record.writeMs = msSince(t);
+
+    if (temporalWanted) resources.swapHistory();
+    history = {true, capture.width, capture.height, settings, camera};
+    result.frames.push_back(std::move(record));
+    if (options.progress) options.progress(index - begin + 1, end - begin);
+  }
+  result.wallMs = msSince(replayStart);
+  return result;
+}
+
+}  // namespace aor

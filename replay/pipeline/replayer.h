@@ -1,0 +1,74 @@
+#pragma once
+// The replay loop: decode a frame's G-buffer (one frame ahead, on a worker thread), upload it, run
+// the frame's compiled render graph `warmup + repeat` times with timestamps, read the result back,
+// and decide history validity for the next frame. Outputs go to a FrameSink.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "capture/capture.h"
+#include "pipeline/settings.h"
+#include "vk/context.h"
+
+namespace aor {
+
+struct ReplayOptions {
+  AoSettings settings;
+  int frameBegin = 0;      // half-open [frameBegin, frameEnd)
+  int frameEnd = -1;       // -1: to the end
+  int repeat = 1;          // timed executions per frame
+  int warmup = 0;          // untimed executions per frame before the timed ones
+  bool keepHistoryOnCut = false;  // test-only: breaks history invalidation on purpose
+  std::function<void(int done, int total)> progress;
+};
+
+struct PassTiming {
+  std::string name;
+  double startMs = 0;                // start within the frame's GPU work (last repetition)
+  std::vector<double> durationsMs;   // one per timed repetition
+};
+
+struct FrameRecord {
+  int index = 0;                     // frame index in the capture
+  bool historyValid = false;
+  std::string resetReason;           // empty when valid
+  std::vector<PassTiming> passes;    // live passes in execution order
+  // Host-side wall time of this frame, milliseconds.
+  double decodeMs = 0, uploadMs = 0, gpuWallMs = 0, readbackMs = 0, writeMs = 0;
+  double hostStartMs = 0;            // since the replay started
+  int64_t invalidDepthPixels = 0;    // NaN, Inf or outside [0,1]
+};
+
+struct FrameOutput {
+  int index = 0;
+  int width = 0, height = 0;
+  std::vector<float> visibility;  // width*height
+  std::vector<float> bent;        // width*height*3 view-space bent normals; empty with bent=0
+};
+
+struct CulledPassInfo {
+  std::string name;
+  std::string reason;  // the graph's reason, plus the setting or input behind it
+};
+
+struct ReplayResult {
+  DeviceInfo device;
+  AoSettings settings;
+  std::vector<FrameRecord> frames;
+  std::vector<CulledPassInfo> culled;       // of the last frame's graph
+  std::string graphDescription;             // describe() of the last frame's compiled graph
+  uint64_t peakGpuBytes = 0;                // resources of the compiled graph, aliasing included
+  uint64_t unaliasedGpuBytes = 0;
+  double wallMs = 0;
+};
+
+// Returns what to record for the frame (its write time is measured by the replayer).
+using FrameSink = std::function<void(const FrameOutput&)>;
+
+// Settings with the capture's scene.ao_radius as the default radius (explicit --set radius wins).
+AoSettings settingsForCapture(const Capture& capture, const AoSettings& base, bool radiusGiven);
+
+ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink);
+
+}  // namespace aor

@@ -1,0 +1,34 @@
+#pragma once
+// AO settings of a run: presets and `--set KEY=VALUE` parsing with range checks. The same struct
+// keys history validity: history recorded under other settings is never blended.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace aor {
+
+struct AoSettings {
+  float radius = 1.0f;        // world units; default: the capture's scene.ao_radius, else 1
+  int slices = 3;             // preset "high"
+  int steps = 3;
+  float falloff = 0.615f;     // fraction of the radius over which sample weight fades; 0 = hard cut-off
+  float power = 1.0f;         // final exponent
+  float thin = 0.0f;          // thin-occluder compensation
+  int spatial = 1;            // 0/1
+  float temporal = 0.9f;      // history weight 0..0.98; 0 = no temporal pass
+  int bent = 1;               // 0/1: bent normals computed and written
+
+  bool operator==(const AoSettings&) const = default;
+};
+
+const std::vector<std::string>& presetNames();
+// Presets set slices x steps: low 1x2, medium 2x2, high 3x3, ultra 9x3. Throws InputError.
+void applyPreset(AoSettings& settings, std::string_view preset);
+// "KEY=VALUE"; unknown keys and out-of-range values throw InputError naming the key.
+void applySetting(AoSettings& settings, std::string_view assignment);
+nlohmann::json toJson(const AoSettings& settings);
+std::string describeSettingKeys();
+
+}  // namespace aor

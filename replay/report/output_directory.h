@@ -1,0 +1,26 @@
+#pragma once
+// Outputs are written under a temporary sibling folder and renamed into place only when the run
+// succeeded, so a failed run never leaves anything that looks like a valid result.
+#include <filesystem>
+
+namespace aor {
+
+class OutputDirectory {
+ public:
+  explicit OutputDirectory(std::filesystem::path finalPath);
+  ~OutputDirectory();  // removes the staging folder unless committed
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+
+  const std::filesystem::path& staging() const { return staging_; }
+  const std::filesystem::path& finalPath() const { return final_; }
+  // Replaces any previous result at finalPath with the staged one.
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path staging_;
+  bool committed_ = false;
+};
+
+}  // namespace aor

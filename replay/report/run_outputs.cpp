@@ -1,0 +1,145 @@
+#include "report/run_outputs.h"
+
+#include <fstream>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "capture/image_io.h"
+#include "report/stats.h"
+
+namespace aor {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Per pass name, every timed duration over all frames and repetitions, in first-seen order.
+std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result) {
+  std::vector<std::pair<std::string, std::vector<double>>> passes;
+  for (const auto& frame : result.frames)
+    for (const auto& p : frame.passes) {
+      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& e) { return e.first == p.name; });
+      if (it == passes.end()) it = passes.insert(passes.end(), {p.name, {}});
+      it->second.insert(it->second.end(), p.durationsMs.begin(), p.durationsMs.end());
+    }
+  return passes;
+}
+
+nlohmann::json summaryJson(const Summary& s) {
+  return {{"min", s.min}, {"median", s.median}, {"max", s.max}, {"mean", s.mean}, {"count", s.count}};
+}
+
+}  // namespace
+
+void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
+  fs::create_directories(outDir / "ao");
+  auto stem = outDir / "ao" / fmt::format("{:04d}", frame.index);
+  std::vector<ExrChannel> channels{{"visibility", ExrPixelType::Float, frame.visibility.data()}};
+  std::vector<float> bentPlanes[3];
+  if (!frame.bent.empty()) {
+    const char* names[] = {"bent.X", "bent.Y", "bent.Z"};
+    for (size_t c = 0; c < 3; ++c) {
+      bentPlanes[c].resize(frame.visibility.size());
+      for (size_t i = 0; i < bentPlanes[c].size(); ++i) bentPlanes[c][i] = frame.bent[3 * i + c];
+      channels.push_back({names[c], ExrPixelType::Float, bentPlanes[c].data()});
+    }
+  }
+  writeExr(stem.string() + ".exr", frame.width, frame.height, channels);
+  writePngGray(stem.string() + ".png", frame.width, frame.height, frame.visibility.data());
+}
+
+nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result) {
+  nlohmann::json report;
+  report["tool"] = "aoreplay";
+  report["capture"] = {{"path", capture.folder.string()}, {"name", capture.name}, {"width", capture.width},
+                       {"height", capture.height}, {"frames", capture.frames.size()},
+                       {"has_normals", capture.hasNormals}, {"has_depth2", capture.hasDepth2}};
+  report["device"] = {{"name", result.device.name}, {"driver", result.device.driver}, {"api_version", result.device.apiVersion}};
+  report["settings"] = toJson(result.settings);
+  report["run"] = {{"frames", {options.frameBegin, options.frameBegin + int(result.frames.size())}},
+                   {"repeat", options.repeat}, {"warmup", options.warmup}};
+
+  nlohmann::json passes = nlohmann::json::array();
+  double totalMedian = 0;
+  for (const auto& [name, samples] : samplesByPass(result)) {
+    auto s = summarize(samples);
+    totalMedian += s.median;
+    passes.push_back({{"name", name}, {"gpu_ms", summaryJson(s)}});
+  }
+  report["passes"] = passes;
+  report["gpu_ms_total_median"] = totalMedian;
+  nlohmann::json culled = nlohmann::json::array();
+  for (const auto& c : result.culled) culled.push_back({{"name", c.name}, {"reason", c.reason}});
+  report["culled_passes"] = culled;
+  report["memory"] = {{"peak_gpu_bytes", result.peakGpuBytes}, {"unaliased_gpu_bytes", result.unaliasedGpuBytes}};
+
+  nlohmann::json frames = nlohmann::json::array();
+  std::vector<double> decode, upload, gpu, readback, write;
+  for (const auto& f : result.frames) {
+    nlohmann::json frame{{"index", f.index}, {"history", f.historyValid ? "valid" : "reset"}};
+    if (!f.historyValid) frame["reset_reason"] = f.resetReason;
+    nlohmann::json framePasses = nlohmann::json::object();
+    for (const auto& p : f.passes) framePasses[p.name] = summarize(p.durationsMs).median;
+    frame["gpu_ms_median"] = framePasses;
+    frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs}, {"gpu", f.gpuWallMs},
+                        {"readback", f.readbackMs}, {"write", f.writeMs}};
+    frame["invalid_depth_pixels"] = f.invalidDepthPixels;
+    frames.push_back(frame);
+  }
+  report["frames"] = frames;
+  report["wall_ms"] = result.wallMs;
+  report["replay_fps"] = result.wallMs > 0 ? 1000.0 * double(result.frames.size()) / result.wallMs : 0.0;
+  return report;
+}
+
+nlohmann::json buildTrace(const ReplayResult& result) {
+  constexpr int kPid = 1, kGpuTrack = 1, kHostTrack = 2;
+  nlohmann::json events = nlohmann::json::array();
+  events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", kPid}, {"tid", kGpuTrack}, {"args", {{"name", "GPU passes"}}}});
+  events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", kPid}, {"tid", kHostTrack}, {"args", {{"name", "Host"}}}});
+  auto slice = [&](const std::string& name, int track, double startMs, double durMs, nlohmann::json args) {
+    events.push_back({{"name", name}, {"ph", "X"}, {"pid", kPid}, {"tid", track}, {"ts", startMs * 1000.0},
+                      {"dur", durMs * 1000.0}, {"args", std::move(args)}});
+  };
+  for (const auto& f : result.frames) {
+    double t = f.hostStartMs;
+    nlohmann::json args{{"frame", f.index}};
+    // Decode ran ahead on a worker thread; it is drawn where the frame starts for orientation.
+    slice("decode", kHostTrack, t, f.decodeMs, args);
+    slice("upload", kHostTrack, t, f.uploadMs, args);
+    t += f.uploadMs;
+    double gpuStart = t;
+    slice("gpu (submit + wait)", kHostTrack, t, f.gpuWallMs, args);
+    t += f.gpuWallMs;
+    slice("readback", kHostTrack, t, f.readbackMs, args);
+    t += f.readbackMs;
+    slice("write", kHostTrack, t, f.writeMs, args);
+    // GPU passes of the last timed run, placed at the end of the GPU wait window.
+    double lastEnd = 0;
+    for (const auto& p : f.passes) lastEnd = std::max(lastEnd, p.startMs + (p.durationsMs.empty() ? 0 : p.durationsMs.back()));
+    double gpuOrigin = gpuStart + std::max(0.0, f.gpuWallMs - lastEnd);
+    for (const auto& p : f.passes)
+      if (!p.durationsMs.empty()) slice(p.name, kGpuTrack, gpuOrigin + p.startMs, p.durationsMs.back(), args);
+  }
+  return {{"traceEvents", events}, {"displayTimeUnit", "ms"}};
+}
+
+void writeJson(const fs::path& path, const nlohmann::json& json) {
+  std::ofstream out(path);
+  out << json.dump(2) << "\n";
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+}
+
+std::string passTable(const ReplayResult& result) {
+  std::string table = fmt::format("{:<22} {:>10} {:>10} {:>10} {:>8}\n", "pass", "min ms", "median ms", "max ms", "runs");
+  double total = 0;
+  for (const auto& [name, samples] : samplesByPass(result)) {
+    auto s = summarize(samples);
+    total += s.median;
+    table += fmt::format("{:<22} {:>10.3f} {:>10.3f} {:>10.3f} {:>8}\n", name, s.min, s.median, s.max, s.count);
+  }
+  table += fmt::format("{:<22} {:>10} {:>10.3f}\n", "total (medians)", "", total);
+  return table;
+}
+
+}  // namespace aor

@@ -1,0 +1,21 @@
+#pragma once
+// What `aoreplay run` writes: ao/NNNN.exr + ao/NNNN.png per frame, report.json, trace.json.
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "capture/capture.h"
+#include "pipeline/replayer.h"
+
+namespace aor {
+
+void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& frame);
+nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
+// Chrome trace-event format: one track for GPU passes, one for the host's per-frame phases.
+nlohmann::json buildTrace(const ReplayResult& result);
+void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
+// Per-pass table (min / median / max GPU ms over all timed runs) for the terminal.
+std::string passTable(const ReplayResult& result);
+
+}  // namespace aor

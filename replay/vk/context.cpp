@@ -1,0 +1,262 @@
+#include "vk/context.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "vk/vk_check.h"
+
+namespace aor {
+
+VulkanError::VulkanError(VkResult r, const char* call, const char* file, int line)
+    : std::runtime_error(fmt::format("Vulkan call failed with {}: {} ({}:{})", vkResultName(r), call, file, line)),
+      result(r) {}
+
+const char* vkResultName(VkResult result) {
+  switch (result) {
+    case VK_SUCCESS: return "VK_SUCCESS";
+    case VK_NOT_READY: return "VK_NOT_READY";
+    case VK_TIMEOUT: return "VK_TIMEOUT";
+    case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+    case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+    case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
+    case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
+    case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+    case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
+    default: return "VkResult error";
+  }
+}
+
+size_t VulkanContext::validationMessageCount() {
+  std::lock_guard lock(messageMutex);
+  return validationMessages.size();
+}
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+  auto* context = static_cast<VulkanContext*>(user);
+  std::lock_guard lock(context->messageMutex);
+  context->validationMessages.emplace_back(data->pMessage ? data->pMessage : "(no message)");
+  fmt::print(stderr, "validation: {}\n", context->validationMessages.back());
+  return VK_FALSE;
+}
+
+bool hasLayer(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  return std::any_of(layers.begin(), layers.end(), [&](const auto& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+VkInstance createInstance(bool validate) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "aoreplay";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  std::vector<const char*> layers, extensions;
+  VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  if (validate) {
+    if (!hasLayer(kValidationLayer))
+      throw NoDeviceError("--validate needs the Khronos validation layer (Debian package vulkan-validationlayers)");
+    layers.push_back(kValidationLayer);
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pNext = validate ? &features : nullptr;
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = uint32_t(layers.size());
+  info.ppEnabledLayerNames = layers.data();
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED)
+    throw NoDeviceError(fmt::format("no Vulkan driver found ({})", vkResultName(result)));
+  VK_CHECK(result);
+  return instance;
+}
+
+DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+  vkGetPhysicalDeviceProperties2(device, &props);
+  DeviceInfo info;
+  info.index = index;
+  info.name = props.properties.deviceName;
+  info.driver = driver.driverName;
+  info.apiVersion = fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(props.properties.apiVersion),
+                                VK_API_VERSION_MINOR(props.properties.apiVersion),
+                                VK_API_VERSION_PATCH(props.properties.apiVersion));
+  info.isLavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+  return info;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(instance, &count, devices.data());
+  return devices;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string& selector) {
+  if (devices.empty()) throw NoDeviceError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+  if (selector.empty()) {
+    auto lavapipe = std::find_if(devices.begin(), devices.end(), [](const auto& d) { return d.isLavapipe; });
+    return lavapipe != devices.end() ? lavapipe->index : 0;
+  }
+  std::string names;
+  for (const auto& d : devices) names += fmt::format("\n  {}: {} ({})", d.index, d.name, d.driver);
+  if (std::all_of(selector.begin(), selector.end(), ::isdigit)) {
+    unsigned long index = std::stoul(selector);
+    if (index >= devices.size()) throw NoDeviceError(fmt::format("--device {}: no device with that index; devices:{}", selector, names));
+    return uint32_t(index);
+  }
+  for (const auto& d : devices)
+    if (lower(d.name).find(lower(selector)) != std::string::npos || lower(d.driver).find(lower(selector)) != std::string::npos)
+      return d.index;
+  throw NoDeviceError(fmt::format("--device {}: no device name contains it; devices:{}", selector, names));
+}
+
+uint32_t computeQueueFamily(VkPhysicalDevice device) {
+  uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  for (uint32_t i = 0; i < count; ++i)  // a compute queue that also has timestamps
+    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && families[i].timestampValidBits > 0) return i;
+  throw NoDeviceError("the selected device has no compute queue with timestamp support");
+}
+
+void createDevice(VulkanContext& ctx) {
+  ctx.queueFamily = computeQueueFamily(ctx.physicalDevice);
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = ctx.queueFamily;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+
+  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  features13.synchronization2 = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
+  features12.scalarBlockLayout = VK_TRUE;
+  features12.hostQueryReset = VK_TRUE;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features12};
+  features.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
+
+  const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queueInfo;
+  info.enabledExtensionCount = 1;
+  info.ppEnabledExtensionNames = extensions;
+  VkResult result = vkCreateDevice(ctx.physicalDevice, &info, nullptr, &ctx.device);
+  if (result == VK_ERROR_EXTENSION_NOT_PRESENT || result == VK_ERROR_FEATURE_NOT_PRESENT)
+    throw NoDeviceError(fmt::format("device '{}' lacks Vulkan 1.3 with push descriptors, scalar block layout and synchronization2 ({})",
+                                    ctx.info.name, vkResultName(result)));
+  VK_CHECK(result);
+  vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
+  ctx.cmdPushDescriptorSet =
+      reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
+}
+
+VkSampler createSampler(VkDevice device, VkFilter filter) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = info.minFilter = filter;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  info.maxLod = 0.0f;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateSampler(device, &info, nullptr, &sampler));
+  return sampler;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> listDevices() {
+  VkInstance instance = createInstance(false);
+  std::vector<DeviceInfo> infos;
+  auto devices = physicalDevices(instance);
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
+  vkDestroyInstance(instance, nullptr);
+  return infos;
+}
+
+void createContext(VulkanContext& ctx, const ContextOptions& options) {
+  ctx.validationEnabled = options.validate;
+  ctx.instance = createInstance(options.validate);
+  if (options.validate) {
+    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = onValidationMessage;
+    info.pUserData = &ctx;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
+    VK_CHECK(create(ctx.instance, &info, nullptr, &ctx.messenger));
+  }
+  auto devices = physicalDevices(ctx.instance);
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
+  uint32_t chosen = selectDevice(infos, options.deviceSelector);
+  ctx.physicalDevice = devices[chosen];
+  ctx.info = infos[chosen];
+
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(ctx.physicalDevice, &props);
+  ctx.timestampPeriodNs = props.limits.timestampPeriod;
+  vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memoryProperties);
+  createDevice(ctx);
+  uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &count, families.data());
+  ctx.timestampValidBits = families[ctx.queueFamily].timestampValidBits;
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = ctx.queueFamily;
+  VK_CHECK(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &ctx.commandPool));
+  ctx.nearestSampler = createSampler(ctx.device, VK_FILTER_NEAREST);
+  ctx.linearSampler = createSampler(ctx.device, VK_FILTER_LINEAR);
+}
+
+void destroyContext(VulkanContext& ctx) {
+  if (ctx.device) {
+    vkDeviceWaitIdle(ctx.device);
+    vkDestroySampler(ctx.device, ctx.nearestSampler, nullptr);
+    vkDestroySampler(ctx.device, ctx.linearSampler, nullptr);
+    vkDestroyCommandPool(ctx.device, ctx.commandPool, nullptr);
+    vkDestroyDevice(ctx.device, nullptr);
+  }
+  if (ctx.messenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkDestroyDebugUtilsMessengerEXT"));
+    destroy(ctx.instance, ctx.messenger, nullptr);
+  }
+  if (ctx.instance) vkDestroyInstance(ctx.instance, nullptr);
+  ctx.device = VK_NULL_HANDLE;
+  ctx.messenger = VK_NULL_HANDLE;
+  ctx.instance = VK_NULL_HANDLE;
+}
+
+}  // namespace aor

@@ -1,0 +1,54 @@
+#pragma once
+// Headless Vulkan instance + device with one compute queue. Lavapipe is the default device so the
+// tool runs on any machine; --device picks another by index or name substring.
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace aor {
+
+struct ContextOptions {
+  std::string deviceSelector;  // empty: lavapipe if present, else the first device
+  bool validate = false;       // Khronos validation with synchronization validation
+};
+
+struct DeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string driver;
+  std::string apiVersion;
+  bool isLavapipe = false;
+};
+
+struct VulkanContext {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkSampler nearestSampler = VK_NULL_HANDLE;
+  VkSampler linearSampler = VK_NULL_HANDLE;
+  PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+  VkPhysicalDeviceMemoryProperties memoryProperties{};
+  DeviceInfo info;
+  double timestampPeriodNs = 1.0;
+  uint32_t timestampValidBits = 64;
+  bool validationEnabled = false;
+
+  // Validation messages (warnings and errors); any one fails a --validate run.
+  std::mutex messageMutex;
+  std::vector<std::string> validationMessages;
+  size_t validationMessageCount();
+};
+
+std::vector<DeviceInfo> listDevices();
+// Throws NoDeviceError when no device (or none matching the selector) exists.
+void createContext(VulkanContext& context, const ContextOptions& options);
+void destroyContext(VulkanContext& context);
+
+}  // namespace aor

@@ -1,0 +1,161 @@
+#include "vk/resources.h"
+
+#include <fmt/format.h>
+
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace aor {
+
+uint32_t findMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags) {
+  const auto& props = ctx.memoryProperties;
+  for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
+    if ((typeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
+  throw std::runtime_error(fmt::format("no Vulkan memory type with flags {:#x} among bits {:#x}", flags, typeBits));
+}
+
+GpuImage createImageUnbound(const VulkanContext& ctx, uint32_t width, uint32_t height, VkFormat format,
+                            VkImageUsageFlags usage) {
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  GpuImage image;
+  image.format = format;
+  image.width = width;
+  image.height = height;
+  image.usage = usage;
+  VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &image.image));
+  return image;
+}
+
+void bindImage(const VulkanContext& ctx, GpuImage& image, VkDeviceMemory memory, VkDeviceSize offset) {
+  VK_CHECK(vkBindImageMemory(ctx.device, image.image, memory, offset));
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = image.image;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.format = image.format;
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &image.view));
+}
+
+GpuImage createImage(const VulkanContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage) {
+  GpuImage image = createImageUnbound(ctx, width, height, format, usage);
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device, image.image, &req);
+  GpuMemory memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits);
+  image.memory = memory.memory;
+  bindImage(ctx, image, image.memory, 0);
+  return image;
+}
+
+void destroyImage(const VulkanContext& ctx, GpuImage& image) {
+  if (image.view) vkDestroyImageView(ctx.device, image.view, nullptr);
+  if (image.image) vkDestroyImage(ctx.device, image.image, nullptr);
+  if (image.memory) vkFreeMemory(ctx.device, image.memory, nullptr);
+  image = {};
+}
+
+GpuMemory allocateDeviceMemory(const VulkanContext& ctx, VkDeviceSize size, uint32_t typeBits) {
+  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  info.allocationSize = size;
+  info.memoryTypeIndex = findMemoryType(ctx, typeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  GpuMemory memory;
+  memory.size = size;
+  memory.typeIndex = info.memoryTypeIndex;
+  VK_CHECK(vkAllocateMemory(ctx.device, &info, nullptr, &memory.memory));
+  return memory;
+}
+
+void freeMemory(const VulkanContext& ctx, GpuMemory& memory) {
+  if (memory.memory) vkFreeMemory(ctx.device, memory.memory, nullptr);
+  memory = {};
+}
+
+GpuBuffer createHostBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
+  GpuBuffer buffer;
+  buffer.size = size;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &buffer.buffer));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device, buffer.buffer, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits,
+                                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &buffer.memory));
+  VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, buffer.memory, 0));
+  VK_CHECK(vkMapMemory(ctx.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
+  return buffer;
+}
+
+void destroyBuffer(const VulkanContext& ctx, GpuBuffer& buffer) {
+  if (buffer.buffer) vkDestroyBuffer(ctx.device, buffer.buffer, nullptr);
+  if (buffer.memory) vkFreeMemory(ctx.device, buffer.memory, nullptr);
+  buffer = {};
+}
+
+ComputePipeline createComputePipeline(const VulkanContext& ctx, std::span<const uint32_t> spirv,
+                                      std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
+                                      std::span<const SpecializationValue> specialization) {
+  ComputePipeline p;
+  p.pushConstantSize = pushConstantSize;
+  std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
+  for (uint32_t i = 0; i < bindings.size(); ++i)
+    layoutBindings.push_back({i, bindings[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  setInfo.bindingCount = uint32_t(layoutBindings.size());
+  setInfo.pBindings = layoutBindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &setInfo, nullptr, &p.setLayout));
+
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 1;
+  layoutInfo.pSetLayouts = &p.setLayout;
+  layoutInfo.pushConstantRangeCount = pushConstantSize ? 1 : 0;
+  layoutInfo.pPushConstantRanges = &range;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &layoutInfo, nullptr, &p.layout));
+
+  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  moduleInfo.codeSize = spirv.size_bytes();
+  moduleInfo.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateShaderModule(ctx.device, &moduleInfo, nullptr, &module));
+
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<uint32_t> values;
+  for (const auto& s : specialization) {
+    entries.push_back({s.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+    values.push_back(s.value);
+  }
+  VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t), values.data()};
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specInfo;
+  info.layout = p.layout;
+  VkResult result = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
+  vkDestroyShaderModule(ctx.device, module, nullptr);
+  VK_CHECK(result);
+  return p;
+}
+
+void destroyPipeline(const VulkanContext& ctx, ComputePipeline& p) {
+  if (p.pipeline) vkDestroyPipeline(ctx.device, p.pipeline, nullptr);
+  if (p.layout) vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
+  if (p.setLayout) vkDestroyDescriptorSetLayout(ctx.device, p.setLayout, nullptr);
+  p = {};
+}
+
+}  // namespace aor

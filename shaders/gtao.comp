@@ -1,0 +1,35 @@
+#version 450
+// Pass 1 of seed 000: horizon-search GTAO with bent normals, one thread per pixel, no shared memory.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "gtao.h"
+
+layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+layout(constant_id = kGtaoSpecSlices) const int kSlices = 3;
+layout(constant_id = kGtaoSpecSteps) const int kSteps = 3;
+layout(constant_id = kGtaoSpecBent) const bool kBent = true;
+layout(constant_id = kGtaoSpecViewNormals) const bool kViewNormals = false;
+
+layout(push_constant, scalar) uniform Push { GtaoConstants pc; };
+layout(set = 0, binding = 0) uniform sampler2D viewDistance;  // R32F linear distance, sky <= 0
+layout(set = 0, binding = 1) uniform sampler2D normals;       // RGBA16F, world (or view) space
+layout(set = 0, binding = 2) uniform writeonly image2D aoOut; // R16F visibility, or RGBA16F bent.xyz + visibility
+
+float gtaoLoadDistance(ivec2 pixel) { return texelFetch(viewDistance, pixel, 0).r; }
+
+vec3 gtaoLoadViewNormal(ivec2 pixel) {
+  vec3 n = texelFetch(normals, pixel, 0).xyz;
+  if (!kViewNormals) n = mat3(pc.worldToView0.xyz, pc.worldToView1.xyz, pc.worldToView2.xyz) * n;
+  float len2 = dot(n, n);
+  return len2 > 1e-12 ? n * inversesqrt(len2) : vec3(0.0);
+}
+
+#include "gtao_pixel.glsl"
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
+  vec3 bent;
+  float visibility = gtaoPixel(pixel, bent);
+  imageStore(aoOut, pixel, kBent ? vec4(bent, visibility) : vec4(visibility));
+}

@@ -1,0 +1,91 @@
+// GTAO horizon search and integration for one pixel (seed 000 pass 1), shared by gtao.comp and the
+// CPU mirror. The includer provides:
+//   GtaoConstants pc; int kSlices, kSteps; bool kBent;
+//   float gtaoLoadDistance(ivec2 pixel)      linear view distance, <= 0 for sky/invalid; pixel in range
+//   vec3  gtaoLoadViewNormal(ivec2 pixel)    view-space unit normal (may be zero for invalid input)
+// Returns visibility in [0,1] and the bent normal (view space, unit) through `bentNormal`.
+
+vec3 gtaoViewPosition(ivec2 pixel, float dist) {
+  return viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
+}
+
+bool gtaoInsideImage(ivec2 pixel) {
+  return pixel.x >= 0 && pixel.y >= 0 && pixel.x < pc.size.x && pixel.y < pc.size.y;
+}
+
+// Cosine of the horizon seen from `centre` toward the sample, blended toward the tangent-plane
+// horizon `lowCos` as the sample's falloff weight drops. Off-screen and sky samples occlude nothing.
+float gtaoSampleHorizonCos(ivec2 samplePixel, vec3 centre, vec3 viewDir, float lowCos) {
+  if (!gtaoInsideImage(samplePixel)) return lowCos;
+  float dist = gtaoLoadDistance(samplePixel);
+  if (dist <= 0.0f) return lowCos;
+  vec3 delta = gtaoViewPosition(samplePixel, dist) - centre;
+  float len = length(delta);
+  if (!(len > 0.0f)) return lowCos;
+  // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
+  // centre sooner, so thin objects do not cast a full horizon.
+  float falloffDist = length(vec3(delta.x, delta.y, delta.z * (1.0f + pc.thin)));
+  float weight = gtaoFalloffWeight(falloffDist, pc.radius, pc.falloffRange);
+  return mix(lowCos, dot(delta, viewDir) / len, weight);
+}
+
+float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
+  bentNormal = vec3(0.0f, 0.0f, 1.0f);
+  float dist = gtaoLoadDistance(pixel);
+  if (dist <= 0.0f) return 1.0f;
+
+  vec3 centre = gtaoViewPosition(pixel, dist);
+  vec3 viewDir = normalize(-centre);
+  vec3 normal = gtaoLoadViewNormal(pixel);
+  if (!(dot(normal, normal) > 1e-12f)) normal = viewDir;  // no usable normal: assume it faces us
+
+  float screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
+  vec2 noise = gtaoNoise(pixel, pc.frameIndex);
+
+  float visibility = 0.0f;
+  vec3 bentSum = vec3(0.0f);
+  for (int slice = 0; slice < kSlices; ++slice) {
+    float phi = (float(slice) + noise.x) * (kPi / float(kSlices));
+    vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
+    vec3 direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0f));
+    vec3 orthoDirection = direction - dot(direction, viewDir) * viewDir;
+    vec3 axis = normalize(cross(direction, viewDir));
+    vec3 projectedNormal = normal - axis * dot(normal, axis);
+    float projectedLength = length(projectedNormal);
+    if (!(projectedLength > 1e-6f)) continue;  // normal along the slice axis: the slice sees nothing
+
+    float signN = dot(orthoDirection, projectedNormal) >= 0.0f ? 1.0f : -1.0f;
+    float cosN = clamp(dot(projectedNormal, viewDir) / projectedLength, 0.0f, 1.0f);
+    float n = signN * acos(cosN);
+    float lowCosPos = cos(n + kHalfPi);
+    float lowCosNeg = cos(n - kHalfPi);
+    float horizonCosPos = lowCosPos;
+    float horizonCosNeg = lowCosNeg;
+
+    for (int step = 0; step < kSteps; ++step) {
+      float t = (float(step) + noise.y) / float(kSteps);
+      float offsetPixels = t * t * screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
+      ivec2 offset = ivec2(round(omega * offsetPixels));
+      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, viewDir, lowCosPos));
+      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, viewDir, lowCosNeg));
+    }
+
+    // Horizons as angles from the view vector, limited to the hemisphere around the normal.
+    float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
+    float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
+    visibility += projectedLength * gtaoSliceVisibility(hPos, -hNeg, n);
+
+    if (kBent) {
+      vec2 b = gtaoSliceBentNormal(hNeg, hPos, n);
+      vec3 sliceBent = vec3(direction.x * b.x, direction.y * b.x, b.y);
+      bentSum += rotateZTo(viewDir, sliceBent) * projectedLength;
+    }
+  }
+  visibility = clamp(visibility / float(kSlices), 0.0f, 1.0f);
+  visibility = pow(visibility, pc.power);
+  if (kBent) {
+    float bentLength = length(bentSum);
+    bentNormal = bentLength > 1e-6f ? bentSum / bentLength : normal;
+  }
+  return visibility;
+}

@@ -1,0 +1,29 @@
+#ifndef AOR_LINEARIZE_DEPTH_H
+#define AOR_LINEARIZE_DEPTH_H
+// Converts depth-attachment values to positive linear view distance once per frame, so the later
+// passes never repeat the division (and reversed/standard handling lives in one place).
+#include "common.h"
+#include "shared_begin.h"
+
+struct LinearizeConstants {
+  ivec2 size;
+  float projection22;  // P[2][2]
+  float projection32;  // P[3][2]
+  uint reversedDepth;  // 1: near = 1, far = 0
+  uint pad0;
+};
+
+// distance = P32 / (d + P22) holds for standard and reversed, finite and infinite perspective
+// projections with depth range [0,1]. Depth at or beyond the far value is sky; non-finite or
+// out-of-range depth is invalid and treated as sky as well.
+float linearViewDistance(float depth, float projection22, float projection32, bool reversedDepth) {
+  bool finiteDepth = !isnan(depth) && !isinf(depth);
+  bool beyondFar = reversedDepth ? depth <= 0.0f : depth >= 1.0f;
+  bool outOfRange = depth < 0.0f || depth > 1.0f;
+  if (!finiteDepth || beyondFar || outOfRange) return kSkyDistance;
+  float dist = projection32 / (depth + projection22);
+  return (dist > 0.0f && !isinf(dist)) ? dist : kSkyDistance;
+}
+
+#include "shared_end.h"
+#endif

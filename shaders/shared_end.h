@@ -1,0 +1,3 @@
+#ifdef __cplusplus
+}  // namespace aor::shader
+#endif

@@ -1,0 +1,65 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "temporal_denoise.h"
+
+layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+layout(constant_id = kTemporalSpecBent) const bool kBent = true;
+layout(constant_id = kTemporalSpecHistory) const bool kHasHistory = true;
+layout(push_constant, scalar) uniform Push { TemporalConstants pc; };
+layout(set = 0, binding = 0) uniform sampler2D aoCurrent;        // spatial (or GTAO) output
+layout(set = 0, binding = 1) uniform sampler2D viewDistance;
+layout(set = 0, binding = 2) uniform sampler2D aoHistory;        // previous output, bilinear sampler
+layout(set = 0, binding = 3) uniform sampler2D previousDistance; // previous frame's linear distance
+layout(set = 0, binding = 4) uniform writeonly image2D aoOut;
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
+  vec4 current = texelFetch(aoCurrent, pixel, 0);
+  float dist = texelFetch(viewDistance, pixel, 0).r;
+  if (!kHasHistory || dist <= 0.0) {  // no history must leave the current value bit for bit
+    imageStore(aoOut, pixel, current);
+    return;
+  }
+  vec3 view = viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
+  vec3 previousView = (pc.viewToPreviousView * vec4(view, 1.0)).xyz;
+  float expected = -previousView.z;
+  bool accepted = expected > 0.0;
+  vec2 previousPixel = vec2(0.0);
+  if (accepted) {
+    vec2 ndc = previousNdc(previousView, pc.previousProjection);
+    vec2 uv = ndc * 0.5 + 0.5;
+    accepted = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));  // layer 1
+    previousPixel = uv * vec2(pc.size) - 0.5;
+  }
+  if (accepted) {  // layer 2: the surface seen there last frame must be this one
+    ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
+    accepted = depthConsistent(expected, texelFetch(previousDistance, nearest, 0).r, pc.depthTolerance);
+  }
+  if (!accepted) {
+    imageStore(aoOut, pixel, current);
+    return;
+  }
+  vec4 history = textureLod(aoHistory, (previousPixel + 0.5) * pc.invSize, 0.0);
+  // Layer 3: clamp history AO into the current 3x3 neighbourhood (bent normals are not clamped).
+  float currentAo = kBent ? current.w : current.r;
+  float lo = currentAo, hi = currentAo;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 p = clamp(pixel + ivec2(dx, dy), ivec2(0), pc.size - 1);
+      float v = kBent ? texelFetch(aoCurrent, p, 0).w : texelFetch(aoCurrent, p, 0).r;
+      lo = min(lo, v);
+      hi = max(hi, v);
+    }
+  float historyAo = kBent ? history.w : history.r;
+  float ao = mix(currentAo, clamp(historyAo, lo, hi), pc.blend);
+  if (!kBent) {
+    imageStore(aoOut, pixel, vec4(ao));
+    return;
+  }
+  vec3 bent = mix(current.xyz, history.xyz, pc.blend);
+  float len = length(bent);
+  bent = len > 1e-6 ? bent / len : current.xyz;
+  imageStore(aoOut, pixel, vec4(bent, ao));
+}

@@ -1,0 +1,35 @@
+#ifndef AOR_TEMPORAL_DENOISE_H
+#define AOR_TEMPORAL_DENOISE_H
+// Pass 3 of seed 000: reprojection through the previous camera and EMA blend, with three rejection
+// layers: (1) off-screen, (2) relative depth mismatch, (3) neighbourhood clamp of the history AO.
+#include "common.h"
+#include "shared_begin.h"
+
+AOR_CONST int kTemporalSpecBent = 0;
+AOR_CONST int kTemporalSpecHistory = 1;   // false on the first frame / after a reset: pass-through
+AOR_CONST float kTemporalDepthTolerance = 0.05f;  // seed 000: |expected - stored| / expected > 5%
+
+struct TemporalConstants {
+  mat4 viewToPreviousView;  // current view space -> previous view space
+  vec4 previousProjection;  // previous P00, P11, P20, P21 (perspective, depth [0,1])
+  vec2 ndcToViewMul;
+  vec2 ndcToViewAdd;
+  vec2 invSize;
+  ivec2 size;
+  float blend;              // history weight (seed 000 temporal_blend)
+  float depthTolerance;
+};
+
+// Previous-frame NDC of a previous-view-space point.
+vec2 previousNdc(vec3 previousView, vec4 previousProjection) {
+  float w = -previousView.z;
+  return vec2((previousProjection.x * previousView.x + previousProjection.z * previousView.z) / w,
+              (previousProjection.y * previousView.y + previousProjection.w * previousView.z) / w);
+}
+
+bool depthConsistent(float expected, float stored, float tolerance) {
+  return stored > 0.0f && abs(expected - stored) <= tolerance * expected;
+}
+
+#include "shared_end.h"
+#endif
