@@ -13,17 +13,17 @@ AOR_CONST float kSkyDistance = -1.0f;
 
 // For a perspective projection P (glm P[col][row]): view.xy = dist * (ndc.xy * mul + add) with
 // mul = 1/(P00, P11) and add = (P20, P21)/(P00, P11); XeGTAO calls these NDCToViewMul/Add.
-vec3 viewPositionFromNdc(vec2 ndc, float dist, vec2 ndcToViewMul, vec2 ndcToViewAdd) {
+AOR_FUNC vec3 viewPositionFromNdc(vec2 ndc, float dist, vec2 ndcToViewMul, vec2 ndcToViewAdd) {
   return vec3(dist * (ndc.x * ndcToViewMul.x + ndcToViewAdd.x), dist * (ndc.y * ndcToViewMul.y + ndcToViewAdd.y), -dist);
 }
 
 // Pixel (x, y), row 0 at the top, samples NDC ((2x+1)/W - 1, (2y+1)/H - 1) (capture format v1).
-vec2 pixelToNdc(vec2 pixel, vec2 invSize) {
+AOR_FUNC vec2 pixelToNdc(vec2 pixel, vec2 invSize) {
   return vec2((2.0f * pixel.x + 1.0f) * invSize.x - 1.0f, (2.0f * pixel.y + 1.0f) * invSize.y - 1.0f);
 }
 
 // Relative depth similarity used by the spatial edge weights (seed 000: 5% of the larger depth).
-float depthEdgeWeight(float z1, float z2) {
+AOR_FUNC float depthEdgeWeight(float z1, float z2) {
   if (z1 <= 0.0f || z2 <= 0.0f) return (z1 <= 0.0f && z2 <= 0.0f) ? 1.0f : 0.0f;
   return clamp(1.0f - abs(z1 - z2) / (max(z1, z2) * 0.05f), 0.0f, 1.0f);
 }

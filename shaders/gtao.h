@@ -36,37 +36,37 @@ struct GtaoConstants {
 };
 
 // Interleaved gradient noise (Jimenez 2014).
-float interleavedGradientNoise(vec2 pixel) {
+AOR_FUNC float interleavedGradientNoise(vec2 pixel) {
   return fract(52.9829189f * fract(0.06711056f * pixel.x + 0.00583715f * pixel.y));
 }
 
 // seed 000: base = fract(IGN(pixel) + (frame % 64) * phi); directions use base, steps a decorrelated copy.
-vec2 gtaoNoise(ivec2 pixel, uint frameIndex) {
+AOR_FUNC vec2 gtaoNoise(ivec2 pixel, uint frameIndex) {
   float base = fract(interleavedGradientNoise(vec2(pixel)) + float(frameIndex % kNoisePeriodFrames) * kGoldenRatioFraction);
   return vec2(base, fract(base * 0.7f + 0.15f));
 }
 
 // Weight of a horizon sample at view-space distance `dist`: 1 inside radius*(1-falloffRange),
 // fading linearly to 0 at the radius. falloffRange = 0 gives a hard cut-off at the radius.
-float gtaoFalloffWeight(float dist, float radius, float falloffRange) {
+AOR_FUNC float gtaoFalloffWeight(float dist, float radius, float falloffRange) {
   float fadeWidth = max(falloffRange * radius, 1e-6f * radius);
   return clamp((radius - dist) / fadeWidth, 0.0f, 1.0f);
 }
 
 // Cosine-weighted visibility of one side of a slice (GTAO paper eq. 10, seed 000 inner_integral).
-float gtaoInnerIntegral(float h, float n) {
+AOR_FUNC float gtaoInnerIntegral(float h, float n) {
   return 0.25f * (-cos(2.0f * h - n) + cos(n) + 2.0f * h * sin(n));
 }
 
 // Both sides: h1 is the horizon angle on the +direction side, h2 on the -direction side, both
 // measured from the view vector and positive; n is the projected normal's angle.
-float gtaoSliceVisibility(float h1, float h2, float n) {
+AOR_FUNC float gtaoSliceVisibility(float h1, float h2, float n) {
   return gtaoInnerIntegral(h1, n) + gtaoInnerIntegral(h2, -n);
 }
 
 // Bent normal of one slice (GTAO paper, Algorithm 2), in slice coordinates: x along the slice
 // direction, z toward the viewer. hNeg <= n <= hPos are signed horizon angles.
-vec2 gtaoSliceBentNormal(float hNeg, float hPos, float n) {
+AOR_FUNC vec2 gtaoSliceBentNormal(float hNeg, float hPos, float n) {
   float t0 = (6.0f * sin(hNeg - n) - sin(3.0f * hNeg - n) + 6.0f * sin(hPos - n) - sin(3.0f * hPos - n)
               + 16.0f * sin(n) - 3.0f * (sin(hNeg + n) + sin(hPos + n))) / 12.0f;
   float t1 = (-cos(3.0f * hNeg - n) - cos(3.0f * hPos - n) + 8.0f * cos(n)
@@ -75,7 +75,7 @@ vec2 gtaoSliceBentNormal(float hNeg, float hPos, float n) {
 }
 
 // Rotation taking +Z (toward the viewer in slice space) onto v (Rodrigues, v not equal to -Z).
-vec3 rotateZTo(vec3 v, vec3 x) {
+AOR_FUNC vec3 rotateZTo(vec3 v, vec3 x) {
   vec3 axis = vec3(-v.y, v.x, 0.0f);  // cross((0,0,1), v)
   float c = v.z;
   float h = 1.0f / (1.0f + c);
@@ -83,7 +83,7 @@ vec3 rotateZTo(vec3 v, vec3 x) {
 }
 
 // acos that tolerates arguments a rounding step outside [-1, 1].
-float safeAcos(float x) {
+AOR_FUNC float safeAcos(float x) {
   return acos(clamp(x, -1.0f, 1.0f));
 }
 

@@ -16,7 +16,7 @@ struct LinearizeConstants {
 // distance = P32 / (d + P22) holds for standard and reversed, finite and infinite perspective
 // projections with depth range [0,1]. Depth at or beyond the far value is sky; non-finite or
 // out-of-range depth is invalid and treated as sky as well.
-float linearViewDistance(float depth, float projection22, float projection32, bool reversedDepth) {
+AOR_FUNC float linearViewDistance(float depth, float projection22, float projection32, bool reversedDepth) {
   bool finiteDepth = !isnan(depth) && !isinf(depth);
   bool beyondFar = reversedDepth ? depth <= 0.0f : depth >= 1.0f;
   bool outOfRange = depth < 0.0f || depth > 1.0f;

@@ -13,7 +13,7 @@ struct ReconstructNormalsConstants {
 };
 
 // Picks the one-sided difference with the smaller depth change; `centre`, `prev`, `next` are view positions.
-vec3 smallerDifference(vec3 centre, vec3 prev, vec3 next, bool hasPrev, bool hasNext) {
+AOR_FUNC vec3 smallerDifference(vec3 centre, vec3 prev, vec3 next, bool hasPrev, bool hasNext) {
   if (!hasPrev) return next - centre;
   if (!hasNext) return centre - prev;
   return abs(next.z - centre.z) < abs(centre.z - prev.z) ? next - centre : centre - prev;

@@ -10,8 +10,10 @@ using uint = uint32_t;
 #define AOR_OUT(T) T&
 #define AOR_INOUT(T) T&
 #define AOR_CONST constexpr
+#define AOR_FUNC inline
 #else
 #define AOR_OUT(T) out T
 #define AOR_INOUT(T) inout T
 #define AOR_CONST const
+#define AOR_FUNC
 #endif

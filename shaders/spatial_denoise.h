@@ -15,7 +15,7 @@ struct SpatialConstants {
   uint pad1;
 };
 
-float spatialGaussian(int dx, int dy) {
+AOR_FUNC float spatialGaussian(int dx, int dy) {
   return exp(-float(dx * dx + dy * dy) / (2.0f * kSpatialSigma * kSpatialSigma));
 }
 

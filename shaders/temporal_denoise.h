@@ -21,13 +21,13 @@ struct TemporalConstants {
 };
 
 // Previous-frame NDC of a previous-view-space point.
-vec2 previousNdc(vec3 previousView, vec4 previousProjection) {
+AOR_FUNC vec2 previousNdc(vec3 previousView, vec4 previousProjection) {
   float w = -previousView.z;
   return vec2((previousProjection.x * previousView.x + previousProjection.z * previousView.z) / w,
               (previousProjection.y * previousView.y + previousProjection.w * previousView.z) / w);
 }
 
-bool depthConsistent(float expected, float stored, float tolerance) {
+AOR_FUNC bool depthConsistent(float expected, float stored, float tolerance) {
   return stored > 0.0f && abs(expected - stored) <= tolerance * expected;
 }
 

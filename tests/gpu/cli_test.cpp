@@ -1,0 +1,139 @@
+// The aoreplay binary as users and their CI call it: outputs, determinism across processes and
+// thread counts, validation, exit codes and no partial results on failure.
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "capture/image_io.h"
+#include "gpu_test_support.h"
+
+namespace aor::test {
+namespace {
+namespace fs = std::filesystem;
+
+nlohmann::json readJson(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+std::vector<float> visibilityOf(const fs::path& exr) {
+  return readExrChannels(exr, {"visibility"}).at("visibility");
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  static fs::path capture() { return generatedCapture("boxes", "orbit", 64, 36, 3); }
+};
+
+TEST_F(Cli, RunWritesImagesReportAndTraceWithPerPassTimes) {
+  auto out = scratchDir("cli-run") / "result";
+  auto r = runAoreplay(fmt::format("run {} --out {} --repeat 3 --warmup 1", capture().string(), out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* pass : {"gtao", "spatial", "temporal"}) EXPECT_NE(r.output.find(pass), std::string::npos) << pass;
+  EXPECT_NE(r.output.find(out.string()), std::string::npos) << "the run says where its outputs went";
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(fs::exists(out / "ao" / fmt::format("{:04d}.exr", i)));
+    EXPECT_TRUE(fs::exists(out / "ao" / fmt::format("{:04d}.png", i)));
+  }
+  auto header = readExrHeader(out / "ao" / "0000.exr");
+  EXPECT_EQ(header.channels.count("visibility"), 1u);
+  EXPECT_EQ(header.channels.count("bent.X"), 1u);
+
+  auto report = readJson(out / "report.json");
+  std::map<std::string, nlohmann::json> passes;
+  for (const auto& p : report["passes"]) passes[p["name"]] = p;
+  for (const char* pass : {"gtao", "spatial", "temporal"}) {
+    ASSERT_TRUE(passes.count(pass)) << pass;
+    auto ms = passes[pass]["gpu_ms"];
+    EXPECT_EQ(ms["count"].get<int>(), 9) << "3 frames x 3 timed repetitions";
+    EXPECT_GT(ms["median"].get<double>(), 0.0);
+    EXPECT_LE(ms["min"].get<double>(), ms["median"].get<double>());
+    EXPECT_LE(ms["median"].get<double>(), ms["max"].get<double>());
+  }
+  EXPECT_EQ(report["frames"][0]["history"], "reset");
+  EXPECT_EQ(report["frames"][0]["reset_reason"], "first frame");
+  EXPECT_EQ(report["frames"][1]["history"], "valid");
+  std::vector<std::string> culled;
+  for (const auto& c : report["culled_passes"]) culled.push_back(c["name"]);
+  EXPECT_EQ(culled, std::vector<std::string>{"reconstruct_normals"});
+
+  auto trace = readJson(out / "trace.json");
+  std::set<int> tracks;
+  for (const auto& e : trace["traceEvents"])
+    if (e["ph"] == "X") tracks.insert(e["tid"].get<int>());
+  EXPECT_EQ(tracks.size(), 2u) << "a GPU track and a host track";
+}
+
+TEST_F(Cli, OutputsAreBitIdenticalAcrossRunsAndLavapipeThreadCounts) {
+  auto dir = scratchDir("cli-determinism");
+  auto args = [&](const char* name) { return fmt::format("run {} --out {}", capture().string(), (dir / name).string()); };
+  ASSERT_EQ(runAoreplay(args("a")).exitCode, 0);
+  ASSERT_EQ(runAoreplay(args("b")).exitCode, 0);
+  ASSERT_EQ(runAoreplay(args("one-thread"), "LP_NUM_THREADS=1").exitCode, 0);
+  for (int i = 0; i < 3; ++i) {
+    auto name = fmt::format("{:04d}.exr", i);
+    auto a = visibilityOf(dir / "a" / "ao" / name);
+    EXPECT_TRUE(bitIdentical(a, visibilityOf(dir / "b" / "ao" / name))) << name;
+    EXPECT_TRUE(bitIdentical(a, visibilityOf(dir / "one-thread" / "ao" / name))) << name;
+  }
+}
+
+TEST_F(Cli, ValidateReportsZeroMessages) {
+  auto out = scratchDir("cli-validate") / "result";
+  auto r = runAoreplay(fmt::format("run {} --validate --out {}", capture().string(), out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto report = readJson(out / "report.json");
+  EXPECT_TRUE(report["validation"]["enabled"].get<bool>());
+  EXPECT_EQ(report["validation"]["messages"].get<int>(), 0);
+}
+
+struct BadRun {
+  std::string arguments;
+  int exitCode;
+  std::string mentions;
+};
+
+TEST_F(Cli, BadUsageAndInputExitWithTwoAndNoDeviceWithThree) {
+  auto dir = scratchDir("cli-bad");
+  std::string cap = capture().string();
+  std::vector<BadRun> cases = {
+      {"run " + (dir / "missing").string(), 2, "capture.json"},
+      {"run " + cap + " --set foo=1", 2, "foo"},
+      {"run " + cap + " --set slices=0", 2, "slices"},
+      {"run " + cap + " --set temporal=0.99", 2, "temporal"},
+      {"run " + cap + " --set radius=abc", 2, "radius"},
+      {"run " + cap + " --preset extreme", 2, "extreme"},
+      {"run " + cap + " --frames 2:1", 2, "--frames"},
+      {"run " + cap + " --frames 0:99", 2, "--frames"},
+      {"run " + cap + " --repeat 0", 2, "repeat"},
+      {"run " + cap + " --no-such-flag", 2, "no-such-flag"},
+      {"run " + cap + " --device no-such-gpu-anywhere", 3, "no-such-gpu-anywhere"},
+  };
+  for (const auto& c : cases) {
+    auto out = dir / "out";
+    auto r = runAoreplay(c.arguments + " --out " + out.string());
+    EXPECT_EQ(r.exitCode, c.exitCode) << c.arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.mentions), std::string::npos) << c.arguments << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.arguments << " left an output folder";
+    for (const auto& entry : fs::directory_iterator(dir)) ADD_FAILURE() << "left behind: " << entry.path();
+  }
+}
+
+TEST_F(Cli, GraphCommandExplainsCulledPassesAndWritesDot) {
+  auto dot = scratchDir("cli-graph") / "graph.dot";
+  auto r = runAoreplay(fmt::format("graph {} --frames 0:1 --dot {}", capture().string(), dot.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("temporal"), std::string::npos);
+  EXPECT_NE(r.output.find("single-frame"), std::string::npos);
+  EXPECT_NE(r.output.find("the capture has normals"), std::string::npos);
+  ASSERT_TRUE(fs::exists(dot));
+  if (std::system("command -v dot > /dev/null") == 0) {
+    EXPECT_EQ(std::system(fmt::format("dot -Tsvg {} -o {}.svg", dot.string(), dot.string()).c_str()), 0);
+  }
+}
+
+}  // namespace
+}  // namespace aor::test

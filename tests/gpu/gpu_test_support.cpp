@@ -1,0 +1,150 @@
+#include "gpu_test_support.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "generator/generator.h"
+
+namespace aor::test {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Destroys the shared context after all tests and fails the program if validation said anything.
+struct ContextHolder {
+  VulkanContext vk;
+  bool created = false;
+  ~ContextHolder() {
+    if (!created) return;
+    destroyContext(vk);
+    size_t messages = vk.validationMessageCount();
+    if (messages) {
+      std::fprintf(stderr, "FAILED: %zu validation message(s) during the GPU tests\n", messages);
+      std::_Exit(1);
+    }
+  }
+};
+
+ContextHolder& holder() {
+  static ContextHolder h;
+  return h;
+}
+
+glm::mat4 vulkanProjection(float fovDegrees, float aspect, bool reversed, bool infinite) {
+  float f = 1.0f / std::tan(glm::radians(fovDegrees) * 0.5f);
+  float n = 0.05f, far = 200.0f;
+  glm::mat4 p(0.0f);
+  p[0][0] = f / aspect;
+  p[1][1] = -f;  // Vulkan NDC y points down
+  p[2][3] = -1.0f;
+  if (!reversed && !infinite) { p[2][2] = far / (n - far); p[3][2] = n * far / (n - far); }
+  if (!reversed && infinite) { p[2][2] = -1.0f; p[3][2] = -n; }
+  if (reversed && !infinite) { p[2][2] = n / (far - n); p[3][2] = n * far / (far - n); }
+  if (reversed && infinite) { p[2][2] = 0.0f; p[3][2] = n; }
+  return p;
+}
+
+}  // namespace
+
+VulkanContext& validatedContext() {
+  auto& h = holder();
+  if (!h.created) {
+    createContext(h.vk, {"", true});
+    h.created = true;
+  }
+  return h.vk;
+}
+
+fs::path scratchDir(const std::string& name) {
+  fs::path dir = fs::path(AOR_BINARY_DIR) / "test-scratch" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path generatedCapture(const std::string& scene, const std::string& path, int width, int height, int frames,
+                          bool normals) {
+  fs::path dir = fs::path(AOR_BINARY_DIR) / "test-captures" /
+                 fmt::format("{}-{}-{}x{}-{}{}", scene, path, width, height, frames, normals ? "" : "-depthonly");
+  if (fs::exists(dir / "capture.json")) return dir;
+  gen::GeneratorOptions o;
+  o.scene = scene;
+  o.path = path;
+  o.width = width;
+  o.height = height;
+  o.frames = frames;
+  o.writeNormals = normals;
+  gen::generateCapture(o, dir);
+  return dir;
+}
+
+fs::path planeCapture(const std::string& name, const PlaneCaptureOptions& o) {
+  fs::path dir = fs::path(AOR_BINARY_DIR) / "test-captures" / name;
+  float aspect = float(o.width) / float(o.height);
+  glm::mat4 projection = vulkanProjection(o.verticalFovDegrees, aspect, o.reversedZ, o.infiniteFar);
+  glm::vec3 eye(0.0f, o.heightAboveFloor, 0.0f);
+  float pitch = glm::radians(o.pitchDegrees);
+  glm::vec3 forward(0.0f, -std::sin(pitch), -std::cos(pitch));
+  glm::mat4 view = glm::lookAtRH(eye, eye + forward, glm::vec3(0, 1, 0));
+  glm::dmat4 invViewProj = glm::inverse(glm::dmat4(projection) * glm::dmat4(view));
+
+  CaptureFrameData frame;
+  frame.view = view;
+  frame.projection = projection;
+  auto& g = frame.gbuffer;
+  g.width = o.width;
+  g.height = o.height;
+  size_t pixels = size_t(o.width) * size_t(o.height);
+  g.depth.assign(pixels, o.reversedZ ? 0.0f : 1.0f);
+  if (o.normals) g.normals.assign(pixels * 3, 0.0f);
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      glm::dvec4 ndc((2.0 * x + 1.0) / o.width - 1.0, (2.0 * y + 1.0) / o.height - 1.0, 0.5, 1.0);
+      glm::dvec4 world = invViewProj * ndc;
+      glm::dvec3 dir = glm::normalize(glm::dvec3(world) / world.w - glm::dvec3(eye));
+      size_t i = size_t(y) * size_t(o.width) + size_t(x);
+      if (dir.y >= -1e-9) continue;  // sky
+      double t = -double(eye.y) / dir.y;
+      glm::dvec4 clip = glm::dmat4(projection) * glm::dmat4(view) * glm::dvec4(glm::dvec3(eye) + t * dir, 1.0);
+      g.depth[i] = float(clip.z / clip.w);
+      if (o.normals) g.normals[3 * i + 1] = 1.0f;
+    }
+  writeCapture(dir, o.width, o.height, {frame}, {{"ao_radius", 1.0}});
+  return dir;
+}
+
+ReplayedFrames replay(const fs::path& capturePath, const AoSettings& settings, int begin, int end, bool keepHistoryOnCut) {
+  Capture capture = loadCapture(capturePath);
+  ReplayOptions options;
+  options.settings = settings;
+  options.frameBegin = begin;
+  options.frameEnd = end;
+  options.keepHistoryOnCut = keepHistoryOnCut;
+  ReplayedFrames out;
+  out.result = replayCapture(validatedContext(), capture, options, [&](const FrameOutput& f) { out.frames.push_back(f); });
+  return out;
+}
+
+CommandResult runAoreplay(const std::string& arguments, const std::string& environment) {
+  std::string command = fmt::format("{} {} {} 2>&1", environment, AOR_EXE, arguments);
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace aor::test

@@ -1,0 +1,54 @@
+#pragma once
+// Shared by the GPU tests: one validated Vulkan context per test program (zero validation
+// messages is asserted at exit), small captures made on the fly, and running the aoreplay binary.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "capture/capture.h"
+#include "pipeline/replayer.h"
+#include "vk/context.h"
+
+namespace aor::test {
+
+// Lavapipe context with validation + synchronization validation, created on first use.
+VulkanContext& validatedContext();
+
+std::filesystem::path scratchDir(const std::string& name);  // fresh folder under the build tree
+
+// Generated with the project's generator once per test program (cached by name).
+std::filesystem::path generatedCapture(const std::string& scene, const std::string& path, int width, int height,
+                                       int frames, bool normals = true);
+
+// Flat floor y = 0 seen from a camera `heightAboveFloor` up, pitched down by `pitchDegrees`;
+// depth computed analytically per pixel (sky where the ray misses).
+struct PlaneCaptureOptions {
+  int width = 64, height = 36;
+  float pitchDegrees = 30.0f;
+  float heightAboveFloor = 1.0f;
+  float verticalFovDegrees = 60.0f;
+  bool reversedZ = false;
+  bool infiniteFar = false;
+  bool normals = true;
+};
+std::filesystem::path planeCapture(const std::string& name, const PlaneCaptureOptions& options);
+
+struct ReplayedFrames {
+  ReplayResult result;
+  std::vector<FrameOutput> frames;
+};
+ReplayedFrames replay(const std::filesystem::path& capture, const AoSettings& settings, int begin = 0, int end = -1,
+                      bool keepHistoryOnCut = false);
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+// Runs the aoreplay binary with `arguments` (already quoted) and optional environment prefix.
+CommandResult runAoreplay(const std::string& arguments, const std::string& environment = "");
+
+bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b);
+
+}  // namespace aor::test
