@@ -146,4 +146,16 @@ std::string describe(const RenderGraph& graph, const CompiledGraph& compiled);
 std::string toDot(const RenderGraph& graph, const CompiledGraph& compiled);
 const char* formatName(VkFormat format);
 
+// --- Additions beyond the original contract (helpers for the executor and for reports) ---
+// State a pass needs for one resource: the union of requiredState() over the pass's accesses to
+// it. Where those accesses need different layouts (e.g. sampled read + storage write of one image)
+// the layout is GENERAL. This is the layout the executor must put in that pass's descriptors, and
+// the `after` state of any barrier the graph emits for it. {NONE, NONE, UNDEFINED} if untouched.
+ImageState requiredState(const PassDecl& pass, ResourceId id);
+const char* accessName(Access access);             // "sampled read", "storage write", ...
+const char* kindName(ResourceKind kind);           // "transient", "imported", "history"
+const char* layoutName(VkImageLayout layout);      // "SHADER_READ_ONLY_OPTIMAL", ...
+std::string stageNames(VkPipelineStageFlags2 stages);  // "COMPUTE_SHADER|COPY", "NONE"
+std::string accessNames(VkAccessFlags2 access);        // "SHADER_SAMPLED_READ", "NONE"
+
 }  // namespace aor::graph
