@@ -1,0 +1,49 @@
+#include "capture/input_error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <utility>
+
+namespace aor {
+namespace {
+
+// The message is always one line: control characters (newlines from library messages, tabs)
+// become spaces.
+std::string oneLine(std::string s) {
+  for (char& c : s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  }
+  return s;
+}
+
+bool endsWithExr(const std::string& file) {
+  if (file.size() < 4) return false;
+  std::string ext = file.substr(file.size() - 4);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".exr";
+}
+
+// "<file>: frame <N>: <label> "<field>": <problem>", each part only when known. The label is
+// "channel" for EXR files, "field" for other files (JSON) and "setting" when there is no file.
+std::string composeMessage(const std::string& file, const std::optional<int>& frame, const std::string& field,
+                           const std::string& problem) {
+  std::string msg;
+  if (!file.empty()) msg += file + ": ";
+  if (frame) msg += "frame " + std::to_string(*frame) + ": ";
+  if (!field.empty()) {
+    const char* label = file.empty() ? "setting" : endsWithExr(file) ? "channel" : "field";
+    msg += std::string(label) + " \"" + field + "\": ";
+  }
+  msg += problem.empty() ? std::string("invalid") : problem;
+  return oneLine(std::move(msg));
+}
+
+}  // namespace
+
+InputError::InputError(std::string file, std::optional<int> frame, std::string field, const std::string& problem)
+    : std::runtime_error(composeMessage(file, frame, field, problem)),
+      file(std::move(file)),
+      frame(frame),
+      field(std::move(field)) {}
+
+}  // namespace aor
