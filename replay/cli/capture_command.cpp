@@ -62,7 +62,7 @@ void registerCaptureCommand(CLI::App& app) {
   cmd->add_flag("--infinite-far", args->options.infiniteFar, "infinite far plane");
   cmd->add_flag("--no-normals", args->noNormals, "depth-only capture (normals reconstructed on replay)");
   cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0));
-  cmd->add_option("--seed", args->options.seed, "seed for scene layout and reference sampling");
+  cmd->add_option("--seed", args->options.seed, "seed of the reference sampling");
   handlers()["capture"] = [args] { return captureCommand(*args); };
 }
 
