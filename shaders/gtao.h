@@ -64,6 +64,12 @@ AOR_FUNC float gtaoSliceVisibility(float h1, float h2, float n) {
   return gtaoInnerIntegral(h1, n) + gtaoInnerIntegral(h2, -n);
 }
 
+// The slice visibility with both horizons on the tangent plane (h = n +- pi/2): cos n + n sin n.
+// Its average over all slice directions is exactly 1.
+AOR_FUNC float gtaoUnoccludedSlice(float n, float cosN, float sinN) {
+  return cosN + n * sinN;
+}
+
 // Bent normal of one slice (GTAO paper, Algorithm 2), in slice coordinates: x along the slice
 // direction, z toward the viewer. hNeg <= n <= hPos are signed horizon angles.
 AOR_FUNC vec2 gtaoSliceBentNormal(float hNeg, float hPos, float n) {

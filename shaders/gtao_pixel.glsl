@@ -13,20 +13,31 @@ bool gtaoInsideImage(ivec2 pixel) {
   return pixel.x >= 0 && pixel.y >= 0 && pixel.x < pc.size.x && pixel.y < pc.size.y;
 }
 
-// Cosine of the horizon seen from `centre` toward the sample, blended toward the tangent-plane
-// horizon `lowCos` as the sample's falloff weight drops. Off-screen and sky samples occlude nothing.
-float gtaoSampleHorizonCos(ivec2 samplePixel, vec3 centre, vec3 viewDir, float lowCos) {
+// Horizon cosine (angle from the view vector, within the slice) of one sample, blended toward the
+// tangent-plane horizon `lowCos` as the sample's falloff weight drops. Off-screen and sky samples
+// occlude nothing.
+// Deviation from seed 000 / XeGTAO, on purpose: the sample's elevation is measured above the
+// tangent plane (sin e = dot(delta, N) / (|delta| |projected N|), exact for samples inside the
+// slice) and turned into a slice angle (trace of the tangent plane at n +- pi/2, minus e). Samples
+// snapped to pixel centres leave the slice plane; measuring their cosine to the view vector
+// directly makes flat planes occlude themselves (0.92 at 30 degrees), this makes planes exact.
+float gtaoSampleHorizonCos(ivec2 samplePixel, vec3 centre, vec3 normal, float projectedLength, float cosN, float sinN,
+                           float side, float lowCos) {
   if (!gtaoInsideImage(samplePixel)) return lowCos;
   float dist = gtaoLoadDistance(samplePixel);
   if (dist <= 0.0f) return lowCos;
   vec3 delta = gtaoViewPosition(samplePixel, dist) - centre;
   float len = length(delta);
   if (!(len > 0.0f)) return lowCos;
+  float sinE = clamp(dot(delta, normal) / (len * projectedLength), -1.0f, 1.0f);
+  float cosE = sqrt(1.0f - sinE * sinE);
+  // side +1: cos(n + pi/2 - e); side -1: cos(n - pi/2 + e)
+  float sampleCos = cosN * sinE - side * sinN * cosE;
   // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
   // centre sooner, so thin objects do not cast a full horizon.
   float falloffDist = length(vec3(delta.x, delta.y, delta.z * (1.0f + pc.thin)));
   float weight = gtaoFalloffWeight(falloffDist, pc.radius, pc.falloffRange);
-  return mix(lowCos, dot(delta, viewDir) / len, weight);
+  return mix(lowCos, sampleCos, weight);
 }
 
 float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
@@ -43,6 +54,7 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
   vec2 noise = gtaoNoise(pixel, pc.frameIndex);
 
   float visibility = 0.0f;
+  float unoccluded = 0.0f;  // what the same slices integrate to with no occluder at all
   vec3 bentSum = vec3(0.0f);
   for (int slice = 0; slice < kSlices; ++slice) {
     float phi = (float(slice) + noise.x) * (kPi / float(kSlices));
@@ -57,6 +69,7 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
     float signN = dot(orthoDirection, projectedNormal) >= 0.0f ? 1.0f : -1.0f;
     float cosN = clamp(dot(projectedNormal, viewDir) / projectedLength, 0.0f, 1.0f);
     float n = signN * acos(cosN);
+    float sinN = signN * sqrt(1.0f - cosN * cosN);
     float lowCosPos = cos(n + kHalfPi);
     float lowCosNeg = cos(n - kHalfPi);
     float horizonCosPos = lowCosPos;
@@ -66,14 +79,15 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
       float t = (float(step) + noise.y) / float(kSteps);
       float offsetPixels = t * t * screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
       ivec2 offset = ivec2(round(omega * offsetPixels));
-      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, viewDir, lowCosPos));
-      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, viewDir, lowCosNeg));
+      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, projectedLength, cosN, sinN, 1.0f, lowCosPos));
+      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, projectedLength, cosN, sinN, -1.0f, lowCosNeg));
     }
 
     // Horizons as angles from the view vector, limited to the hemisphere around the normal.
     float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
     float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
     visibility += projectedLength * gtaoSliceVisibility(hPos, -hNeg, n);
+    unoccluded += projectedLength * gtaoUnoccludedSlice(n, cosN, sinN);
 
     if (kBent) {
       vec2 b = gtaoSliceBentNormal(hNeg, hPos, n);
@@ -81,7 +95,11 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
       bentSum += rotateZTo(viewDir, sliceBent) * projectedLength;
     }
   }
-  visibility = clamp(visibility / float(kSlices), 0.0f, 1.0f);
+  // Deviation from seed 000 / XeGTAO, on purpose: divide by the unoccluded integral of the same
+  // slices instead of the slice count. Both tend to the same value as slices grow, but a single
+  // unoccluded slice integrates to projLen * (cos n + n sin n), not 1, so dividing by the count
+  // makes tilted planes scatter around 1 (0.92 at 30 degrees with 9 slices); the ratio is exact.
+  visibility = unoccluded > 0.0f ? clamp(visibility / unoccluded, 0.0f, 1.0f) : 1.0f;
   visibility = pow(visibility, pc.power);
   if (kBent) {
     float bentLength = length(bentSum);

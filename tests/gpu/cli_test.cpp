@@ -100,7 +100,7 @@ TEST_F(Cli, BadUsageAndInputExitWithTwoAndNoDeviceWithThree) {
   auto dir = scratchDir("cli-bad");
   std::string cap = capture().string();
   std::vector<BadRun> cases = {
-      {"run " + (dir / "missing").string(), 2, "capture.json"},
+      {"run " + (dir / "missing").string(), 2, "missing"},
       {"run " + cap + " --set foo=1", 2, "foo"},
       {"run " + cap + " --set slices=0", 2, "slices"},
       {"run " + cap + " --set temporal=0.99", 2, "temporal"},

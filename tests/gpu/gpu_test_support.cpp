@@ -6,6 +6,8 @@
 #include <cstring>
 #include <map>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -80,7 +82,12 @@ fs::path generatedCapture(const std::string& scene, const std::string& path, int
   o.height = height;
   o.frames = frames;
   o.writeNormals = normals;
-  gen::generateCapture(o, dir);
+  // CTest runs tests as parallel processes: generate privately, then publish with one rename.
+  fs::path mine = dir.string() + fmt::format(".gen-{}", getpid());
+  gen::generateCapture(o, mine);
+  std::error_code alreadyThere;
+  fs::rename(mine, dir, alreadyThere);
+  if (alreadyThere) fs::remove_all(mine);
   return dir;
 }
 
@@ -115,7 +122,10 @@ fs::path planeCapture(const std::string& name, const PlaneCaptureOptions& o) {
       g.depth[i] = float(clip.z / clip.w);
       if (o.normals) g.normals[3 * i + 1] = 1.0f;
     }
-  writeCapture(dir, o.width, o.height, {frame}, {{"ao_radius", 1.0}});
+  fs::path mine = dir.string() + fmt::format(".gen-{}", getpid());
+  writeCapture(mine, o.width, o.height, {frame}, {{"ao_radius", 1.0}});
+  fs::remove_all(dir);
+  fs::rename(mine, dir);
   return dir;
 }
 

@@ -100,17 +100,15 @@ TEST(Replay, GtaoPassMatchesItsCpuMirror) {
     FrameCamera camera{frame.view, frame.projection, capture.width, capture.height, 1};
     auto cpu = gtaoOnCpu(loadGBuffer(capture, 1), camera, settings);
     ASSERT_EQ(cpu.visibility.size(), gpu.frames[0].visibility.size());
-    double maxError = 0, meanVisibility = 0;
+    double maxError = 0, minVisibility = 1;
     size_t worst = 0;
     for (size_t i = 0; i < cpu.visibility.size(); ++i) {
       double e = std::abs(double(cpu.visibility[i]) - double(gpu.frames[0].visibility[i]));
       if (e > maxError) { maxError = e; worst = i; }
-      meanVisibility += cpu.visibility[i];
+      minVisibility = std::min(minVisibility, double(cpu.visibility[i]));
     }
-    meanVisibility /= double(cpu.visibility.size());
     EXPECT_LE(maxError, 1e-3) << "bent=" << bent << " worst pixel " << worst;
-    EXPECT_GT(meanVisibility, 0.3);
-    EXPECT_LT(meanVisibility, 0.97);  // the scene is occluded somewhere: a constant output fails
+    EXPECT_LT(minVisibility, 0.7);  // the boxes occlude the floor: a constant output fails
     if (bent) {
       double maxBentError = 0;
       for (size_t i = 0; i < cpu.bent.size(); ++i)
