@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
+#include "metrics/run_analysis.h"
 #include "pipeline/replayer.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
@@ -46,6 +47,21 @@ void printProgress(int done, int total) {
   if (done == total) fmt::print(stderr, "\n");
 }
 
+void analyzeFrame(RunAnalysis& analysis, const Capture& capture, const FrameOutput& frame) {
+  const auto& desc = capture.frames[size_t(frame.index)];
+  auto reference = loadReference(capture, frame.index);
+  AnalyzedFrame analyzed{frame.index, frame.width, frame.height, frame.visibility.data(), frame.gbuffer->depth.data(),
+                         desc.view, desc.projection, desc.cut, frame.historyValid, frame.resetReason,
+                         reference ? &*reference : nullptr};
+  analysis.addFrame(analyzed);
+}
+
+void addAnalysis(nlohmann::json& report, const RunAnalysis& analysis) {
+  for (auto& frame : report["frames"])
+    if (auto metrics = analysis.frameJson(frame["index"].get<int>()); !metrics.empty()) frame["metrics"] = metrics;
+  report["metrics"] = analysis.summaryJson();
+}
+
 int runCommand(const RunArgs& args) {
   Capture capture = loadCapture(args.capture);
   ReplayOptions options;
@@ -58,17 +74,20 @@ int runCommand(const RunArgs& args) {
   OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out));
 
   ReplayResult result;
+  RunAnalysis analysis;
   size_t validationMessages = 0;
   {
     ContextScope context({args.device, args.validate});
     result = replayCapture(context.vk, capture, options, [&](const FrameOutput& frame) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
+      analyzeFrame(analysis, capture, frame);
     });
     vkDeviceWaitIdle(context.vk.device);
     destroyContext(context.vk);
     validationMessages = context.vk.validationMessageCount();
   }
   auto report = buildReport(capture, options, result);
+  addAnalysis(report, analysis);
   report["validation"] = {{"enabled", args.validate}, {"messages", validationMessages}};
   writeJson(out.staging() / "report.json", report);
   writeJson(out.staging() / "trace.json", buildTrace(result));

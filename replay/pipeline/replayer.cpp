@@ -191,6 +191,9 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
 
     t = Clock::now();
     FrameOutput output = readResult(staging.readback, index, capture.width, capture.height, bent);
+    output.gbuffer = &decoded.gbuffer;
+    output.historyValid = record.historyValid;
+    output.resetReason = record.resetReason;
     record.readbackMs = msSince(t);
     t = Clock::now();
     if (sink) sink(output);

@@ -45,6 +45,9 @@ struct FrameOutput {
   int width = 0, height = 0;
   std::vector<float> visibility;  // width*height
   std::vector<float> bent;        // width*height*3 view-space bent normals; empty with bent=0
+  const GBuffer* gbuffer = nullptr;  // the frame's inputs, valid during the sink call
+  bool historyValid = false;
+  std::string resetReason;
 };
 
 struct CulledPassInfo {

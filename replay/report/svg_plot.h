@@ -1,0 +1,28 @@
+#pragma once
+// Small, dependency-free SVG charts for reports (error vs time, per-frame curves): readable in any
+// browser, no plotting tool needed. Deterministic output for the same data.
+#include <string>
+#include <vector>
+
+namespace aor {
+
+struct PlotSeries {
+  std::string name;
+  std::vector<double> x, y;
+  bool lines = true;             // connect points in order
+  bool markers = true;
+  std::vector<std::string> labels;  // optional per-point labels (same length as x), drawn beside points
+  std::vector<bool> highlighted;    // optional per-point emphasis (e.g. Pareto-optimal), same length
+};
+
+struct PlotOptions {
+  std::string title;
+  std::string xLabel, yLabel;
+  bool logX = false, logY = false;
+  int width = 800, height = 500;
+  std::vector<double> verticalMarkers;  // e.g. frames where history was reset
+};
+
+std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& options);
+
+}  // namespace aor
