@@ -1,0 +1,208 @@
+#include "report/svg_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace aor {
+namespace {
+
+// Distinct on white and in grayscale print; cycled when there are more series.
+constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf"};
+constexpr double kMarginLeft = 78, kMarginRight = 24, kMarginTop = 44, kMarginBottom = 56;
+
+std::string escapeXml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+bool usable(double v, bool logScale) { return std::isfinite(v) && (!logScale || v > 0); }
+
+// One axis: data range (in plotted units, i.e. log10 when logarithmic) mapped onto pixels.
+struct Axis {
+  bool log = false;
+  double lo = 0, hi = 1;
+  double pixelLo = 0, pixelHi = 1;
+
+  double transform(double v) const { return log ? std::log10(v) : v; }
+  double toPixel(double v) const { return pixelLo + (transform(v) - lo) / (hi - lo) * (pixelHi - pixelLo); }
+};
+
+// Finite data range of every point that can be drawn on this axis; [0,1] when there is none.
+std::pair<double, double> dataRange(const std::vector<PlotSeries>& series, bool isX, bool logScale, bool otherLog) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& s : series)
+    for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      double v = isX ? s.x[i] : s.y[i], other = isX ? s.y[i] : s.x[i];
+      if (!usable(v, logScale) || !usable(other, otherLog)) continue;
+      v = logScale ? std::log10(v) : v;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  if (!(lo <= hi)) return {0.0, 1.0};
+  if (hi - lo < 1e-12 * std::max(1.0, std::abs(hi))) {  // a single value: give it some room
+    double pad = logScale ? 0.5 : std::max(std::abs(hi) * 0.1, 1e-9);
+    return {lo - pad, hi + pad};
+  }
+  double pad = (hi - lo) * 0.06;
+  return {lo - pad, hi + pad};
+}
+
+// 1, 2 or 5 times a power of ten, about range/targetCount.
+double niceStep(double range, int targetCount) {
+  double raw = range / targetCount;
+  double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  double fraction = raw / magnitude;
+  double nice = fraction < 1.5 ? 1 : fraction < 3.5 ? 2 : fraction < 7.5 ? 5 : 10;
+  return nice * magnitude;
+}
+
+// Tick values in data units.
+std::vector<double> ticks(const Axis& axis) {
+  std::vector<double> out;
+  if (axis.log) {
+    bool fewDecades = axis.hi - axis.lo < 1.5;
+    for (int e = int(std::floor(axis.lo)); e <= int(std::ceil(axis.hi)); ++e)
+      for (double m : fewDecades ? std::vector<double>{1, 2, 5} : std::vector<double>{1}) {
+        double v = m * std::pow(10.0, e);
+        if (std::log10(v) >= axis.lo && std::log10(v) <= axis.hi) out.push_back(v);
+      }
+    return out;
+  }
+  double step = niceStep(axis.hi - axis.lo, 6);
+  for (double v = std::ceil(axis.lo / step) * step; v <= axis.hi + step * 1e-9; v += step)
+    out.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
+  return out;
+}
+
+std::string tickLabel(double v) {
+  double a = std::abs(v);
+  if (a != 0 && (a < 1e-3 || a >= 1e5)) return fmt::format("{:.0e}", v);
+  return fmt::format("{:g}", v);
+}
+
+void drawAxes(std::string& svg, const Axis& x, const Axis& y, const PlotOptions& o) {
+  double left = x.pixelLo, right = x.pixelHi, top = y.pixelHi, bottom = y.pixelLo;
+  for (double v : ticks(x)) {
+    double px = x.toPixel(v);
+    svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#e4e4e4"/>)" "\n", px, top, px, bottom);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{}</text>)" "\n", px, bottom + 18, tickLabel(v));
+  }
+  for (double v : ticks(y)) {
+    double py = y.toPixel(v);
+    svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#e4e4e4"/>)" "\n", left, py, right, py);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="end">{}</text>)" "\n", left - 6, py + 4, tickLabel(v));
+  }
+  svg += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="none" stroke="#444"/>)" "\n",
+                     left, top, right - left, bottom - top);
+  svg += fmt::format(R"(<text x="{:.1f}" y="24" text-anchor="middle" font-size="16" font-weight="bold">{}</text>)" "\n",
+                     (left + right) / 2, escapeXml(o.title));
+  svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{}{}</text>)" "\n", (left + right) / 2,
+                     bottom + 40, escapeXml(o.xLabel), x.log ? " (log scale)" : "");
+  svg += fmt::format(R"svg(<text transform="translate(18 {:.1f}) rotate(-90)" text-anchor="middle">{}{}</text>)svg" "\n",
+                     (top + bottom) / 2, escapeXml(o.yLabel), y.log ? " (log scale)" : "");
+}
+
+void drawVerticalMarkers(std::string& svg, const Axis& x, const Axis& y, const std::vector<double>& markers) {
+  for (double v : markers) {
+    if (!usable(v, x.log)) continue;
+    double px = x.toPixel(v);
+    if (px < x.pixelLo || px > x.pixelHi) continue;
+    svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#888" stroke-dasharray="5 4"/>)" "\n",
+                       px, y.pixelHi, px, y.pixelLo);
+  }
+}
+
+void drawSeries(std::string& svg, const PlotSeries& s, const char* color, const Axis& x, const Axis& y) {
+  std::vector<std::pair<double, double>> points;  // pixel positions of drawable points, with index
+  std::vector<size_t> indices;
+  for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
+    if (usable(s.x[i], x.log) && usable(s.y[i], y.log)) {
+      points.emplace_back(x.toPixel(s.x[i]), y.toPixel(s.y[i]));
+      indices.push_back(i);
+    }
+  if (s.lines && points.size() > 1) {
+    std::string path;
+    for (const auto& [px, py] : points) path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "" : " ", px, py);
+    svg += fmt::format(R"(<polyline points="{}" fill="none" stroke="{}" stroke-width="2"/>)" "\n", path, color);
+  }
+  for (size_t k = 0; k < points.size(); ++k) {
+    auto [px, py] = points[k];
+    size_t i = indices[k];
+    bool emphasised = i < s.highlighted.size() && s.highlighted[i];
+    if (emphasised)
+      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="7" fill="{}" stroke="#000" stroke-width="1.5"/>)" "\n", px, py, color);
+    else if (s.markers)
+      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n", px, py, color);
+    if (i < s.labels.size() && !s.labels[i].empty())
+      svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="#222">{}</text>)" "\n", px + 9, py - 7,
+                         escapeXml(s.labels[i]));
+  }
+}
+
+void drawLegend(std::string& svg, const std::vector<PlotSeries>& series, const Axis& x, const Axis& y) {
+  bool anyHighlight = false;
+  for (const auto& s : series) anyHighlight |= std::find(s.highlighted.begin(), s.highlighted.end(), true) != s.highlighted.end();
+  size_t rows = series.size() + (anyHighlight ? 1 : 0);
+  if (rows == 0) return;
+  double width = 12;
+  for (const auto& s : series) width = std::max(width, 7.0 * double(s.name.size()));
+  width = std::max(width, anyHighlight ? 7.0 * 16 : 0.0) + 40;
+  double left = x.pixelHi - width - 8, top = y.pixelHi + 8;
+  svg += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="#fff" fill-opacity="0.9" stroke="#bbb"/>)" "\n",
+                     left, top, width, 20.0 * double(rows) + 6);
+  for (size_t i = 0; i < series.size(); ++i) {
+    double row = top + 16 + 20.0 * double(i);
+    const char* color = kPalette[i % std::size(kPalette)];
+    if (series[i].lines)
+      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"/>)" "\n",
+                         left + 8, row - 4, left + 28, row - 4, color);
+    else
+      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
+                         left + 18, row - 4, color);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 34, row, escapeXml(series[i].name));
+  }
+  if (anyHighlight) {
+    double row = top + 16 + 20.0 * double(series.size());
+    svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
+                       left + 18, row - 4);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">Pareto-optimal</text>)" "\n", left + 34, row);
+  }
+}
+
+}  // namespace
+
+std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& options) {
+  double width = std::max(options.width, 200), height = std::max(options.height, 150);
+  Axis x{options.logX}, y{options.logY};
+  std::tie(x.lo, x.hi) = dataRange(series, true, options.logX, options.logY);
+  std::tie(y.lo, y.hi) = dataRange(series, false, options.logY, options.logX);
+  x.pixelLo = kMarginLeft;
+  x.pixelHi = width - kMarginRight;
+  y.pixelLo = height - kMarginBottom;  // y grows upward: low values at the bottom
+  y.pixelHi = kMarginTop;
+
+  std::string svg = fmt::format(
+      R"(<svg xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif" font-size="12">)" "\n",
+      width, height);
+  svg += fmt::format(R"(<rect width="{}" height="{}" fill="#fff"/>)" "\n", width, height);
+  drawAxes(svg, x, y, options);
+  drawVerticalMarkers(svg, x, y, options.verticalMarkers);
+  for (size_t i = 0; i < series.size(); ++i) drawSeries(svg, series[i], kPalette[i % std::size(kPalette)], x, y);
+  drawLegend(svg, series, x, y);
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace aor
