@@ -20,6 +20,8 @@ struct AnalyzedFrame {
   bool historyValid = false;          // the temporal pass blended history into this frame
   std::string resetReason;            // why not, when !historyValid
   const std::vector<float>* reference = nullptr;  // ground-truth visibility, when the capture has it
+  float historyWeight = 0.0f;          // the run's `temporal` setting (EMA history weight)
+  const float* noHistory = nullptr;   // this frame replayed with temporal=0, when the run made that replay
 };
 
 }  // namespace aor

@@ -1,10 +1,245 @@
 #include "metrics/temporal_metrics.h"
 
-namespace aor {
+#include <algorithm>
+#include <cmath>
 
-// Placeholder until the temporal metrics land: records nothing.
-void TemporalAnalysis::addFrame(const AnalyzedFrame&) {}
-nlohmann::json TemporalAnalysis::frameJson(int) const { return nullptr; }
-nlohmann::json TemporalAnalysis::summaryJson() const { return nullptr; }
+#include "metrics/temporal_response.h"
+
+namespace aor {
+namespace {
+
+bool sameSize(const FrameGeometry& a, const FrameGeometry& b) { return a.width == b.width && a.height == b.height; }
+
+// Lai et al. 2018: previous output warped into this frame, squared difference over unmasked pixels.
+double warpingError(const float* visibility, const std::vector<float>& previous, const Reprojection& r, int width,
+                    int height) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < r.state.size(); ++i) {
+    if (r.state[i] != PixelHistory::Reprojected) continue;
+    double d = double(visibility[i]) - double(sampleBilinear(previous, width, height, r.position[i]));
+    sum += d * d;
+    ++count;
+  }
+  return count ? sum / double(count) : 0.0;
+}
+
+double derivativeError(const float* output, const std::vector<float>& previousOutput, const float* reference,
+                       const std::vector<float>& previousReference, const FrameGeometry& g) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < g.distance.size(); ++i) {
+    if (g.isSky(i)) continue;
+    double outputChange = double(output[i]) - double(previousOutput[i]);
+    double referenceChange = double(reference[i]) - double(previousReference[i]);
+    sum += std::abs(outputChange - referenceChange);
+    ++count;
+  }
+  return count ? sum / double(count) : 0.0;
+}
+
+double meanAbsError(const float* output, const float* truth, const FrameGeometry& g) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < g.distance.size(); ++i) {
+    if (g.isSky(i)) continue;
+    sum += std::abs(double(output[i]) - double(truth[i]));
+    ++count;
+  }
+  return count ? sum / double(count) : 0.0;
+}
+
+nlohmann::json responseJson(const ResponseSummary& r) {
+  return {{"response_frames", r.responseFrames}, {"ghost_energy", r.ghostEnergy}, {"settled_error", r.settled},
+          {"settled", r.settledReached}};
+}
+
+// Mean, max and the frame of the max of one per-frame value over the frames that measured it.
+nlohmann::json frameValueSummary(const std::vector<TemporalFrameMetrics>& frames, double TemporalFrameMetrics::*value) {
+  double sum = 0, max = -1;
+  int count = 0, maxFrame = -1;
+  for (const auto& f : frames) {
+    double v = f.*value;
+    if (v < 0) continue;
+    sum += v;
+    ++count;
+    if (v > max) { max = v; maxFrame = f.index; }
+  }
+  if (!count) return nullptr;
+  return {{"mean", sum / count}, {"max", max}, {"max_frame", maxFrame}, {"frames", count}};
+}
+
+}  // namespace
+
+void TemporalAnalysis::addFrame(const AnalyzedFrame& frame) {
+  historyWeight_ = frame.historyWeight;
+  FrameGeometry geometry = frameGeometry(frame.width, frame.height, frame.depth, frame.view, frame.projection);
+  TemporalFrameMetrics m;
+  m.index = frame.index;
+  m.historyValid = frame.historyValid;
+  m.resetReason = frame.resetReason;
+  const float* truth = frame.reference ? frame.reference->data() : frame.noHistory;
+  if (truth) {
+    std::string source = frame.reference ? "reference" : "no-history replay";
+    errorSource_ = errorSource_.empty() || errorSource_ == source ? source : "mixed";
+    m.absError = meanAbsError(frame.visibility, truth, geometry);
+  }
+
+  if (!window_.continues(geometry, frame.cut)) {
+    auto deviations = window_.pixelDeviations();
+    if (!deviations.empty()) {
+      closedWindowDeviations_.insert(closedWindowDeviations_.end(), deviations.begin(), deviations.end());
+      staticWindows_.push_back({window_.firstFrame(), window_.firstFrame() + window_.frameCount() - 1});
+    }
+    window_.start(frame.index, geometry);
+  }
+  window_.add(frame.visibility);
+
+  std::unique_ptr<Reprojection> reprojection;
+  if (previous_ && sameSize(previous_->geometry, geometry)) {
+    reprojection = std::make_unique<Reprojection>(reproject(geometry, previous_->geometry));
+    size_t disoccluded = reprojection->count(PixelHistory::Disoccluded);
+    size_t surface = disoccluded + reprojection->count(PixelHistory::Reprojected);
+    if (!frame.cut) {
+      m.disoccludedFraction = surface ? double(disoccluded) / double(surface) : 0.0;
+      m.warpingError = warpingError(frame.visibility, previous_->visibility, *reprojection, frame.width, frame.height);
+      if (frame.reference && !previous_->reference.empty())
+        m.derivativeError = derivativeError(frame.visibility, previous_->visibility, frame.reference->data(),
+                                            previous_->reference, geometry);
+    }
+  }
+
+  auto next = std::make_unique<Previous>();
+  trackAges(frame, geometry, reprojection.get(), truth, next->age, next->sinceDisocclusion);
+  size_t pixels = geometry.distance.size();
+  next->visibility.assign(frame.visibility, frame.visibility + pixels);
+  if (frame.reference) next->reference = *frame.reference;
+  next->geometry = std::move(geometry);
+  previous_ = std::move(next);
+  frames_.push_back(std::move(m));
+}
+
+// Frames since each pixel's history started, followed through the reprojection; pixels whose
+// history started at a disocclusion add their error to the curve at their age.
+void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry& geometry,
+                                 const Reprojection* reprojection, const float* truth, std::vector<int>& age,
+                                 std::vector<bool>& sinceDisocclusion) {
+  size_t pixels = geometry.distance.size();
+  age.assign(pixels, -1);
+  sinceDisocclusion.assign(pixels, false);
+  if (historyWeight_ <= 0.0f) return;  // no history: nothing to follow
+  bool continued = frame.historyValid && reprojection;
+  for (size_t i = 0; i < pixels; ++i) {
+    if (geometry.isSky(i)) continue;
+    age[i] = 0;
+    if (!continued) continue;  // reset: every pixel starts over, and not from a disocclusion
+    if (reprojection->state[i] == PixelHistory::Reprojected) {
+      size_t from = reprojection->nearestPrevious(i, geometry.width, geometry.height);
+      if (previous_->age[from] >= 0) {
+        age[i] = std::min(previous_->age[from] + 1, kMaxTrackedAge);
+        sinceDisocclusion[i] = previous_->sinceDisocclusion[from];
+      }
+    } else {
+      sinceDisocclusion[i] = true;
+    }
+    if (truth && sinceDisocclusion[i]) {
+      ageErrorSum_[size_t(age[i])] += std::abs(double(frame.visibility[i]) - double(truth[i]));
+      ++ageCount_[size_t(age[i])];
+    }
+  }
+}
+
+NoiseSummary TemporalAnalysis::staticNoise() const {
+  auto deviations = closedWindowDeviations_;
+  auto open = window_.pixelDeviations();
+  deviations.insert(deviations.end(), open.begin(), open.end());
+  return summarizeNoise(std::move(deviations));
+}
+
+std::vector<double> TemporalAnalysis::disocclusionCurve() const {
+  std::vector<double> curve;
+  for (size_t a = 0; a < ageCount_.size() && ageCount_[a] >= kMinPixelsPerAge; ++a)
+    curve.push_back(ageErrorSum_[a] / double(ageCount_[a]));
+  return curve;
+}
+
+// abs_error from each history reset up to the next one (only runs that keep history have resets
+// worth following).
+std::vector<std::vector<double>> TemporalAnalysis::resetCurves(std::vector<size_t>* starts) const {
+  std::vector<std::vector<double>> curves;
+  if (historyWeight_ <= 0.0f) return curves;
+  for (size_t i = 0; i < frames_.size(); ++i) {
+    if (frames_[i].historyValid || frames_[i].resetReason == "single-frame replay") continue;
+    std::vector<double> curve;
+    for (size_t j = i; j < frames_.size() && (j == i || frames_[j].historyValid) && frames_[j].absError >= 0; ++j)
+      curve.push_back(frames_[j].absError);
+    if (curve.empty()) continue;
+    curves.push_back(std::move(curve));
+    starts->push_back(i);
+  }
+  return curves;
+}
+
+nlohmann::json TemporalAnalysis::frameJson(int index) const {
+  auto it = std::find_if(frames_.begin(), frames_.end(), [&](const auto& f) { return f.index == index; });
+  if (it == frames_.end()) return nullptr;
+  nlohmann::json j = nlohmann::json::object();
+  if (it->disoccludedFraction >= 0) j["disoccluded_fraction"] = it->disoccludedFraction;
+  if (it->warpingError >= 0) j["warping_error"] = it->warpingError;
+  if (it->derivativeError >= 0) j["derivative_error"] = it->derivativeError;
+  if (it->absError >= 0) j["abs_error"] = it->absError;
+  std::vector<size_t> starts;
+  auto curves = resetCurves(&starts);
+  int predicted = emaResponseFrames(historyWeight_);
+  for (size_t c = 0; c < curves.size(); ++c)
+    if (frames_[starts[c]].index == index) j.update(responseJson(analyzeResponse(curves[c], predicted)));
+  if (j.empty()) return nullptr;
+  return j;
+}
+
+nlohmann::json TemporalAnalysis::summaryJson() const {
+  if (frames_.empty()) return nullptr;
+  nlohmann::json j;
+  int predicted = emaResponseFrames(historyWeight_);
+  j["history_weight"] = historyWeight_;
+  j["error_source"] = errorSource_.empty() ? nlohmann::json(nullptr) : nlohmann::json(errorSource_);
+  j["ema"] = {{"predicted_response_frames", predicted},
+              {"residual", emaResidual(historyWeight_, std::max(predicted + 1, 2))},
+              {"note", "stale history keeps w^n of its amplitude after n frames (w = history weight)"}};
+
+  auto noise = staticNoise();
+  if (noise.pixels > 0) {
+    auto windows = staticWindows_;
+    if (!window_.pixelDeviations().empty())
+      windows.push_back({window_.firstFrame(), window_.firstFrame() + window_.frameCount() - 1});
+    j["static_noise"] = {{"mean", noise.mean}, {"p99", noise.p99}, {"pixels", noise.pixels}, {"windows", windows}};
+  } else {
+    j["static_noise"] = nullptr;
+  }
+  j["warping_error"] = frameValueSummary(frames_, &TemporalFrameMetrics::warpingError);
+  j["derivative_error"] = frameValueSummary(frames_, &TemporalFrameMetrics::derivativeError);
+  j["abs_error"] = frameValueSummary(frames_, &TemporalFrameMetrics::absError);
+
+  std::vector<size_t> starts;
+  auto curves = resetCurves(&starts);
+  nlohmann::json resets = nlohmann::json::array();
+  for (size_t c = 0; c < curves.size(); ++c) {
+    nlohmann::json r{{"frame", frames_[starts[c]].index}, {"reason", frames_[starts[c]].resetReason}, {"abs_error", curves[c]}};
+    r.update(responseJson(analyzeResponse(curves[c], predicted)));
+    resets.push_back(r);
+  }
+  j["resets"] = resets;
+
+  auto curve = disocclusionCurve();
+  if (!curve.empty()) {
+    std::vector<size_t> counts(ageCount_.begin(), ageCount_.begin() + std::ptrdiff_t(curve.size()));
+    nlohmann::json d{{"abs_error_by_age", curve}, {"pixels_by_age", counts}};
+    d.update(responseJson(analyzeResponse(curve, predicted)));
+    j["disocclusion"] = d;
+  } else {
+    j["disocclusion"] = nullptr;
+  }
+  return j;
+}
 
 }  // namespace aor

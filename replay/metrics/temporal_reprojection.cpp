@@ -1,0 +1,75 @@
+#include "metrics/temporal_reprojection.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "linearize_depth.h"
+#include "temporal_denoise.h"
+
+namespace aor {
+
+FrameGeometry frameGeometry(int width, int height, const float* depth, const glm::mat4& view, const glm::mat4& projection) {
+  FrameGeometry g{width, height, view, projection, {}};
+  bool reversed = projection[3][2] > 0.0f;  // depth falls with distance exactly when P32 > 0
+  g.distance.resize(size_t(width) * size_t(height));
+  for (size_t i = 0; i < g.distance.size(); ++i)
+    g.distance[i] = shader::linearViewDistance(depth[i], projection[2][2], projection[3][2], reversed);
+  return g;
+}
+
+size_t Reprojection::count(PixelHistory s) const { return size_t(std::count(state.begin(), state.end(), s)); }
+
+size_t Reprojection::nearestPrevious(size_t pixel, int width, int height) const {
+  glm::ivec2 p = glm::clamp(glm::ivec2(glm::round(position[pixel])), glm::ivec2(0), glm::ivec2(width - 1, height - 1));
+  return size_t(p.y) * size_t(width) + size_t(p.x);
+}
+
+Reprojection reproject(const FrameGeometry& current, const FrameGeometry& previous) {
+  const auto& p = current.projection;
+  glm::vec2 ndcToViewMul{1.0f / p[0][0], 1.0f / p[1][1]};
+  glm::vec2 ndcToViewAdd{p[2][0] / p[0][0], p[2][1] / p[1][1]};
+  const auto& q = previous.projection;
+  glm::vec4 previousProjection{q[0][0], q[1][1], q[2][0], q[2][1]};
+  glm::mat4 viewToPreviousView = previous.view * glm::inverse(current.view);
+  glm::vec2 size(float(current.width), float(current.height));
+  glm::vec2 invSize = 1.0f / size;
+
+  Reprojection r;
+  size_t pixels = current.distance.size();
+  r.state.assign(pixels, PixelHistory::Sky);
+  r.position.assign(pixels, glm::vec2(0.0f));
+  for (int y = 0; y < current.height; ++y)
+    for (int x = 0; x < current.width; ++x) {
+      size_t i = size_t(y) * size_t(current.width) + size_t(x);
+      float dist = current.distance[i];
+      if (!(dist > 0.0f)) continue;
+      r.state[i] = PixelHistory::Disoccluded;
+      glm::vec3 viewPos = shader::viewPositionFromNdc(shader::pixelToNdc(glm::vec2(x, y), invSize), dist, ndcToViewMul, ndcToViewAdd);
+      glm::vec3 previousView = glm::vec3(viewToPreviousView * glm::vec4(viewPos, 1.0f));
+      float expected = -previousView.z;
+      if (!(expected > 0.0f)) continue;
+      glm::vec2 uv = shader::previousNdc(previousView, previousProjection) * 0.5f + 0.5f;
+      if (!(uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= 1.0f && uv.y <= 1.0f)) continue;
+      r.position[i] = uv * size - 0.5f;
+      size_t nearest = r.nearestPrevious(i, current.width, current.height);
+      if (shader::depthConsistent(expected, previous.distance[nearest], shader::kTemporalDepthTolerance))
+        r.state[i] = PixelHistory::Reprojected;
+    }
+  return r;
+}
+
+float sampleBilinear(const std::vector<float>& image, int width, int height, glm::vec2 position) {
+  auto at = [&](int x, int y) {
+    x = std::clamp(x, 0, width - 1);
+    y = std::clamp(y, 0, height - 1);
+    return image[size_t(y) * size_t(width) + size_t(x)];
+  };
+  glm::vec2 base = glm::floor(position);
+  glm::vec2 f = position - base;
+  int x = int(base.x), y = int(base.y);
+  float top = at(x, y) * (1.0f - f.x) + at(x + 1, y) * f.x;
+  float bottom = at(x, y + 1) * (1.0f - f.x) + at(x + 1, y + 1) * f.x;
+  return top * (1.0f - f.y) + bottom * f.y;
+}
+
+}  // namespace aor
