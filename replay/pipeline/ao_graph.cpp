@@ -22,10 +22,10 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
   uint32_t w = uint32_t(cam.width), h = uint32_t(cam.height);
   bool bent = settings.bent != 0;
 
-  auto depth = g.importImage(kDepthImage, {w, h, VK_FORMAT_R32_SFLOAT}, stateOf(resources, kDepthImage));
-  auto normals = in.hasNormals ? g.importImage(kNormalsImage, {w, h, VK_FORMAT_R16G16B16A16_SFLOAT},
-                                               stateOf(resources, kNormalsImage))
-                               : graph::kNoResource;
+  // The G-buffer is uploaded anew every frame, so its images are transients: once their last
+  // reader has run, their memory can hold later images (aliasing).
+  auto depth = g.createImage(kDepthImage, {w, h, VK_FORMAT_R32_SFLOAT});
+  auto normals = in.hasNormals ? g.createImage(kNormalsImage, {w, h, VK_FORMAT_R16G16B16A16_SFLOAT}) : graph::kNoResource;
   addUploadPass(g, *buffers.depthUpload, depth, buffers.normalsUpload, normals);
 
   // With a temporal pass the linear distance is kept as history: the depth test of its second
@@ -45,8 +45,15 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
   auto reconstructed = addReconstructNormalsPass(g, pipelines, cam, distance);
   GtaoInputs gtaoInputs{distance, in.hasNormals ? normals : reconstructed, !in.hasNormals};
   auto noisy = addGtaoPass(g, pipelines, cam, settings, gtaoInputs);
+  // The screen-space reference replaces GTAO (still declared, so the graph shows it culled) and is
+  // never denoised.
+  bool reference = settings.technique == AoTechnique::Reference;
+  if (reference) {
+    noisy = addGtaoReferencePass(g, pipelines, cam, settings, gtaoInputs);
+    frame.notes["gtao"] = "technique=reference";
+  }
   auto blurred = addSpatialPass(g, pipelines, cam, settings, noisy, distance);
-  auto denoised = settings.spatial ? blurred : noisy;
+  auto denoised = settings.spatial && !reference ? blurred : noisy;
   frame.finalAo = denoised;
 
   if (in.temporalWanted) {

@@ -11,6 +11,7 @@
 #include "pipeline/ao_graph.h"
 #include "pipeline/graph_executor.h"
 #include "pipeline/graph_resources.h"
+#include "report/graph_json.h"
 
 namespace aor {
 namespace {
@@ -47,13 +48,21 @@ int64_t stageDepth(const GBuffer& g, GpuBuffer& target) {
   return invalid;
 }
 
-void stageNormals(const GBuffer& g, GpuBuffer& target) {
+int64_t stageNormals(const GBuffer& g, GpuBuffer& target) {
   auto* out = static_cast<uint16_t*>(target.mapped);
   size_t pixels = g.normals.size() / 3;
+  int64_t invalid = 0;
   for (size_t i = 0; i < pixels; ++i) {
-    for (int c = 0; c < 3; ++c) out[4 * i + size_t(c)] = glm::packHalf1x16(g.normals[3 * i + size_t(c)]);
+    bool finite = true;
+    for (int c = 0; c < 3; ++c) {
+      float v = g.normals[3 * i + size_t(c)];
+      finite &= std::isfinite(v);
+      out[4 * i + size_t(c)] = glm::packHalf1x16(v);
+    }
     out[4 * i + 3] = 0;
+    invalid += !finite;
   }
+  return invalid;
 }
 
 FrameOutput readResult(const GpuBuffer& readback, int index, int width, int height, bool bent) {
@@ -81,16 +90,17 @@ struct HistoryTracker {
   int width = 0, height = 0;
   AoSettings settings;
   FrameCamera camera;
+  float medianDistance = 0;  // of the frame it holds, for the camera-jump limit
 
   // Why the previous frame's output must not be blended into this one; empty when it may.
   std::string resetReason(const CaptureFrame& frame, int width, int height, const AoSettings& settings, bool temporalWanted,
-                          bool keepHistoryOnCut) const {
+                          const ReplayOptions& options) const {
     if (!temporalWanted) return settings.temporal <= 0.0f ? "temporal=0" : "single-frame replay";
     if (!exists) return "first frame";
-    if (frame.cut && !keepHistoryOnCut) return "cut";
+    if (frame.cut && !options.keepHistoryOnCut) return "cut";
     if (width != this->width || height != this->height) return "size change";
     if (!(settings == this->settings)) return "settings changed";
-    return {};
+    return cameraJumpReason(camera.view, frame.view, medianDistance, options.cameraJump);
   }
 };
 
@@ -149,13 +159,12 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
 
     auto t = Clock::now();
     record.invalidDepthPixels = stageDepth(decoded.gbuffer, staging.depth);
-    if (capture.hasNormals) stageNormals(decoded.gbuffer, staging.normals);
+    if (capture.hasNormals) record.invalidNormalPixels = stageNormals(decoded.gbuffer, staging.normals);
     record.uploadMs = msSince(t);
 
     const auto& frame = capture.frames[size_t(index)];
     FrameCamera camera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
-    record.resetReason = history.resetReason(frame, capture.width, capture.height, settings, temporalWanted,
-                                             options.keepHistoryOnCut);
+    record.resetReason = history.resetReason(frame, capture.width, capture.height, settings, temporalWanted, options);
     record.historyValid = record.resetReason.empty();
     if (history.exists && (history.width != capture.width || history.height != capture.height)) resources.dropHistory();
 
@@ -185,6 +194,7 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
         result.graphDescription = graph::describe(frameGraph.graph, compiled);
         result.peakGpuBytes = compiled.peakBytes();
         result.unaliasedGpuBytes = compiled.unaliasedTransientBytes + compiled.persistentBytes;
+        result.resources = graphResourcesJson(frameGraph.graph, compiled);
       }
     }
     record.gpuWallMs = msSince(t);
@@ -200,7 +210,8 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     record.writeMs = msSince(t);
 
     if (temporalWanted) resources.swapHistory();
-    history = {true, capture.width, capture.height, settings, camera};
+    history = {true, capture.width, capture.height, settings, camera,
+               temporalWanted ? medianViewDistance(decoded.gbuffer.depth, frame.projection) : 0.0f};
     result.frames.push_back(std::move(record));
     if (options.progress) options.progress(index - begin + 1, end - begin);
   }

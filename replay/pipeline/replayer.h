@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "capture/capture.h"
+#include "pipeline/camera_jump.h"
 #include "pipeline/settings.h"
 #include "vk/context.h"
 
@@ -20,6 +23,7 @@ struct ReplayOptions {
   int repeat = 1;          // timed executions per frame
   int warmup = 0;          // untimed executions per frame before the timed ones
   bool keepHistoryOnCut = false;  // test-only: breaks history invalidation on purpose
+  CameraJumpLimits cameraJump;    // history is also reset when the camera turns or moves further
   std::function<void(int done, int total)> progress;
 };
 
@@ -38,6 +42,7 @@ struct FrameRecord {
   double decodeMs = 0, uploadMs = 0, gpuWallMs = 0, readbackMs = 0, writeMs = 0;
   double hostStartMs = 0;            // since the replay started
   int64_t invalidDepthPixels = 0;    // NaN, Inf or outside [0,1]
+  int64_t invalidNormalPixels = 0;   // NaN or Inf in a normal component (uploaded as is, ignored by GTAO)
 };
 
 struct FrameOutput {
@@ -63,6 +68,7 @@ struct ReplayResult {
   std::string graphDescription;             // describe() of the last frame's compiled graph
   uint64_t peakGpuBytes = 0;                // resources of the compiled graph, aliasing included
   uint64_t unaliasedGpuBytes = 0;
+  nlohmann::json resources;                 // graphResourcesJson() of the last frame's graph
   double wallMs = 0;
 };
 

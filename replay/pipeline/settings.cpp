@@ -83,8 +83,24 @@ std::string describeSettingKeys() {
   return s;
 }
 
+const char* techniqueName(AoTechnique technique) { return technique == AoTechnique::Reference ? "reference" : "gtao"; }
+
+AoTechnique parseTechnique(std::string_view name) {
+  if (name == "gtao") return AoTechnique::Gtao;
+  if (name == "reference") return AoTechnique::Reference;
+  throw InputError("", std::nullopt, "--technique", fmt::format("unknown technique '{}' (gtao, reference)", name));
+}
+
+void applyTechnique(AoSettings& settings, AoTechnique technique) {
+  settings.technique = technique;
+  if (technique == AoTechnique::Reference) {
+    settings.spatial = 0;
+    settings.temporal = 0.0f;
+  }
+}
+
 nlohmann::json toJson(const AoSettings& s) {
-  return {{"radius", s.radius}, {"slices", s.slices}, {"steps", s.steps}, {"falloff", s.falloff}, {"power", s.power},
+  return {{"technique", techniqueName(s.technique)}, {"radius", s.radius}, {"slices", s.slices}, {"steps", s.steps}, {"falloff", s.falloff}, {"power", s.power},
           {"thin", s.thin},     {"spatial", s.spatial}, {"temporal", s.temporal}, {"bent", s.bent}};
 }
 

@@ -9,7 +9,12 @@
 
 namespace aor {
 
+// gtao: the real-time pipeline (GTAO -> spatial -> temporal). reference: the same GTAO integral
+// evaluated exhaustively on the depth buffer (no noise, no denoise; see shaders/gtao_reference.comp).
+enum class AoTechnique { Gtao, Reference };
+
 struct AoSettings {
+  AoTechnique technique = AoTechnique::Gtao;
   float radius = 1.0f;        // world units; default: the capture's scene.ao_radius, else 1
   int slices = 3;             // preset "high"
   int steps = 3;
@@ -29,6 +34,10 @@ void applyPreset(AoSettings& settings, std::string_view preset);
 // "KEY=VALUE"; unknown keys and out-of-range values throw InputError naming the key.
 void applySetting(AoSettings& settings, std::string_view assignment);
 nlohmann::json toJson(const AoSettings& settings);
+const char* techniqueName(AoTechnique technique);
+AoTechnique parseTechnique(std::string_view name);  // "gtao" | "reference"; throws InputError
+// Sets the technique; `reference` also sets spatial=0 and temporal=0 (it is never denoised).
+void applyTechnique(AoSettings& settings, AoTechnique technique);
 std::string describeSettingKeys();
 
 }  // namespace aor

@@ -64,14 +64,18 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   for (const auto& [name, samples] : samplesByPass(result)) {
     auto s = summarize(samples);
     totalMedian += s.median;
-    passes.push_back({{"name", name}, {"gpu_ms", summaryJson(s)}});
+    auto gpuMs = summaryJson(s);
+    gpuMs["samples"] = samples;  // every timed run, frame-major: what `aoreplay compare` tests
+    passes.push_back({{"name", name}, {"gpu_ms", gpuMs}});
   }
   report["passes"] = passes;
   report["gpu_ms_total_median"] = totalMedian;
   nlohmann::json culled = nlohmann::json::array();
   for (const auto& c : result.culled) culled.push_back({{"name", c.name}, {"reason", c.reason}});
   report["culled_passes"] = culled;
-  report["memory"] = {{"peak_gpu_bytes", result.peakGpuBytes}, {"unaliased_gpu_bytes", result.unaliasedGpuBytes}};
+  report["memory"] = {{"peak_gpu_bytes", result.peakGpuBytes},
+                      {"unaliased_gpu_bytes", result.unaliasedGpuBytes},
+                      {"resources", result.resources}};
 
   nlohmann::json frames = nlohmann::json::array();
   std::vector<double> decode, upload, gpu, readback, write;
@@ -84,6 +88,7 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
     frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs}, {"gpu", f.gpuWallMs},
                         {"readback", f.readbackMs}, {"write", f.writeMs}};
     frame["invalid_depth_pixels"] = f.invalidDepthPixels;
+    frame["invalid_normal_pixels"] = f.invalidNormalPixels;
     frames.push_back(frame);
   }
   report["frames"] = frames;

@@ -1,0 +1,165 @@
+// The real AO frame graph, compiled without a GPU: which passes and resources a capture and a run
+// need (issue "Build only what a scene and a run need"), checked with the graph tests' checker.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "../graph/graph_test_support.h"
+#include "pipeline/ao_graph.h"
+#include "vk/context.h"
+
+namespace aor {
+namespace {
+
+struct Built {
+  AoFrameGraph frame;
+  graph::CompiledGraph compiled;
+
+  const graph::ResourceDecl* resource(const std::string& name) const {
+    for (const auto& r : frame.graph.resources())
+      if (r.name == name) return &r;
+    return nullptr;
+  }
+  bool allocated(const std::string& name) const {
+    for (graph::ResourceId id = 0; id < frame.graph.resources().size(); ++id)
+      if (frame.graph.resources()[id].name == name) return compiled.resources[id].used;
+    return false;
+  }
+  bool runs(const std::string& pass) const {
+    for (const auto& p : compiled.passes)
+      if (frame.graph.passes()[p.pass].name == pass) return true;
+    return false;
+  }
+  std::string culledReason(const std::string& pass) const {
+    for (const auto& c : compiled.culled)
+      if (frame.graph.passes()[c.pass].name == pass) return c.reason;
+    return "";
+  }
+  uint64_t historyBytes() const {
+    uint64_t bytes = 0;
+    for (graph::ResourceId id = 0; id < frame.graph.resources().size(); ++id)
+      if (frame.graph.resources()[id].kind == graph::ResourceKind::History && compiled.resources[id].used)
+        bytes += graph::imageBytes(frame.graph.resources()[id].desc);
+    return bytes;
+  }
+};
+
+struct Case {
+  int width = 320, height = 180;
+  bool hasNormals = true;
+  bool multiFrame = true;
+  bool historyValid = true;
+  AoSettings settings;
+};
+
+Built build(const Case& c) {
+  static VulkanContext noDevice;  // pipelines are only created when a pass executes
+  static PassPipelines pipelines(noDevice);
+  static GpuBuffer placeholder;
+  FrameCamera camera{glm::mat4(1.0f), glm::mat4(1.0f), c.width, c.height, 1};
+  camera.projection[2][3] = -1.0f;
+  camera.projection[3][3] = 0.0f;
+  camera.projection[3][2] = -0.1f;
+  AoFrameInputs inputs{camera, camera, c.hasNormals, c.multiFrame && c.settings.temporal > 0, c.historyValid, c.settings};
+  AoFrameBuffers buffers{&placeholder, &placeholder, &placeholder};
+  Built b{buildAoFrameGraph(inputs, pipelines, nullptr, buffers), {}};
+  b.compiled = b.frame.graph.compile();
+  graph::testing::checkCompiled(b.frame.graph, b.compiled);  // lifetimes, aliasing, every hazard covered by barriers
+  return b;
+}
+
+TEST(AoGraph, DefaultMultiFrameReplayRunsTheThreePassesWithHistory) {
+  auto b = build({});
+  for (const char* pass : {"upload", "linearize_depth", "gtao", "spatial", "temporal", "readback"})
+    EXPECT_TRUE(b.runs(pass)) << pass;
+  EXPECT_GT(b.historyBytes(), 0u);
+  EXPECT_TRUE(b.allocated("ao_history.previous"));
+}
+
+TEST(AoGraph, SingleFrameReplayHasNoTemporalPassAndNoHistoryMemory) {
+  Case c;
+  c.multiFrame = false;
+  auto b = build(c);
+  EXPECT_FALSE(b.runs("temporal"));
+  EXPECT_NE(b.culledReason("temporal"), "");
+  EXPECT_EQ(b.frame.notes.at("temporal"), "single-frame replay: no history");
+  EXPECT_EQ(b.historyBytes(), 0u);
+  for (const auto& r : b.frame.graph.resources()) EXPECT_NE(r.kind, graph::ResourceKind::History) << r.name;
+  EXPECT_EQ(b.compiled.persistentBytes, 0u);
+}
+
+TEST(AoGraph, TemporalZeroDropsTheTemporalPassAndHistory) {
+  Case c;
+  c.settings.temporal = 0.0f;
+  auto b = build(c);
+  EXPECT_FALSE(b.runs("temporal"));
+  EXPECT_EQ(b.frame.notes.at("temporal"), "temporal=0");
+  EXPECT_EQ(b.historyBytes(), 0u);
+}
+
+TEST(AoGraph, NormalReconstructionOnlyWithoutCapturedNormals) {
+  Case withNormals, depthOnly;
+  depthOnly.hasNormals = false;
+  auto a = build(withNormals), b = build(depthOnly);
+  EXPECT_FALSE(a.runs("reconstruct_normals"));
+  EXPECT_NE(a.culledReason("reconstruct_normals").find("normals_reconstructed"), std::string::npos);
+  EXPECT_FALSE(a.allocated("normals_reconstructed"));
+  EXPECT_TRUE(b.runs("reconstruct_normals"));
+  EXPECT_TRUE(b.allocated("normals_reconstructed"));
+  EXPECT_EQ(b.resource("normals"), nullptr) << "a depth-only capture uploads no normals";
+}
+
+TEST(AoGraph, SpatialPassOnlyWithSpatialOne) {
+  Case c;
+  c.settings.spatial = 0;
+  auto b = build(c);
+  EXPECT_FALSE(b.runs("spatial"));
+  EXPECT_FALSE(b.allocated("ao_blurred"));
+  EXPECT_TRUE(b.runs("temporal"));
+}
+
+TEST(AoGraph, BentZeroUsesOneChannelAoImages) {
+  Case c;
+  c.settings.bent = 0;
+  auto b = build(c);
+  for (const char* name : {"ao_noisy", "ao_blurred", "ao_history.current"})
+    EXPECT_EQ(b.resource(name)->desc.format, VK_FORMAT_R16_SFLOAT) << name;
+  c.settings.bent = 1;
+  auto withBent = build(c);
+  EXPECT_EQ(withBent.resource("ao_noisy")->desc.format, VK_FORMAT_R16G16B16A16_SFLOAT);
+}
+
+TEST(AoGraph, HistoryIsAbsentWhenInvalid) {
+  Case c;
+  c.historyValid = false;
+  auto b = build(c);
+  EXPECT_EQ(b.resource("ao_history.previous"), nullptr);
+  EXPECT_EQ(b.resource("distance_history.previous"), nullptr);
+  EXPECT_TRUE(b.runs("temporal"));  // still writes this frame's history
+}
+
+TEST(AoGraph, PeakMemoryAt1080pFallsWithBentZeroAndWithAliasing) {
+  Case c;
+  c.width = 1920;
+  c.height = 1080;
+  auto bent = build(c);
+  c.settings.bent = 0;
+  auto noBent = build(c);
+  auto mib = [](uint64_t b) { return double(b) / (1024.0 * 1024.0); };
+  for (const auto* b : {&bent, &noBent}) {
+    uint64_t unaliased = b->compiled.unaliasedTransientBytes + b->compiled.persistentBytes;
+    EXPECT_LT(b->compiled.peakBytes(), unaliased);
+    // History images never share memory.
+    for (graph::ResourceId id = 0; id < b->frame.graph.resources().size(); ++id)
+      if (b->frame.graph.resources()[id].kind != graph::ResourceKind::Transient)
+        EXPECT_EQ(b->compiled.resources[id].memorySlot, -1);
+  }
+  EXPECT_LT(noBent.compiled.peakBytes(), bent.compiled.peakBytes());
+  // The figures quoted in replay/pipeline/README.md.
+  std::printf("1920x1080 peak MiB: bent=1 %.2f (unaliased %.2f), bent=0 %.2f (unaliased %.2f)\n",
+              mib(bent.compiled.peakBytes()), mib(bent.compiled.unaliasedTransientBytes + bent.compiled.persistentBytes),
+              mib(noBent.compiled.peakBytes()),
+              mib(noBent.compiled.unaliasedTransientBytes + noBent.compiled.persistentBytes));
+}
+
+}  // namespace
+}  // namespace aor
