@@ -68,6 +68,14 @@ double niceStep(double range, int targetCount) {
   return nice * magnitude;
 }
 
+std::vector<double> linearTicks(double lo, double hi, bool positiveOnly) {
+  std::vector<double> out;
+  double step = niceStep(hi - lo, 6);
+  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step)
+    if (!positiveOnly || v > step * 1e-9) out.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
+  return out;
+}
+
 // Tick values in data units.
 std::vector<double> ticks(const Axis& axis) {
   std::vector<double> out;
@@ -78,12 +86,11 @@ std::vector<double> ticks(const Axis& axis) {
         double v = m * std::pow(10.0, e);
         if (std::log10(v) >= axis.lo && std::log10(v) <= axis.hi) out.push_back(v);
       }
-    return out;
+    if (out.size() >= 3) return out;
+    // Less than about a decade: evenly spaced values read better than one or two powers of ten.
+    return linearTicks(std::pow(10.0, axis.lo), std::pow(10.0, axis.hi), true);
   }
-  double step = niceStep(axis.hi - axis.lo, 6);
-  for (double v = std::ceil(axis.lo / step) * step; v <= axis.hi + step * 1e-9; v += step)
-    out.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
-  return out;
+  return linearTicks(axis.lo, axis.hi, false);
 }
 
 std::string tickLabel(double v) {
