@@ -12,3 +12,10 @@ gen() {
 }
 # Default capture: a city block of boxes, slow orbit, ray-traced reference.
 gen boxes-orbit boxes --size 320x180 --frames 24 --path orbit --reference-spp 64
+# One small capture per scene kind (README of replay/generator: scenes and their oracles). Few
+# frames: the oracles need one view; the others enough motion to exercise history.
+gen plane-static plane --size 320x180 --frames 1 --path static --reference-spp 128
+gen pit-cut pit --size 320x180 --frames 4 --path cut --reference-spp 128
+gen sphere-orbit sphere --size 320x180 --frames 6 --path orbit --reference-spp 128
+gen bunny-orbit bunny --size 320x180 --frames 8 --path orbit --reference-spp 64
+gen thin-strafe thin --size 320x180 --frames 8 --path strafe --reference-spp 64
