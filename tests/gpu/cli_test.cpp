@@ -81,13 +81,16 @@ TEST_F(Cli, OutputsAreBitIdenticalAcrossRunsAndLavapipeThreadCounts) {
   }
 }
 
-TEST_F(Cli, ValidateReportsZeroMessages) {
+TEST_F(Cli, ValidateOnTheShippedCaptureReportsZeroMessages) {
   auto out = scratchDir("cli-validate") / "result";
-  auto r = runAoreplay(fmt::format("run {} --validate --out {}", capture().string(), out.string()));
+  auto shipped = fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit";
+  auto r = runAoreplay(fmt::format("run {} --validate --no-images --out {}", shipped.string(), out.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   auto report = readJson(out / "report.json");
   EXPECT_TRUE(report["validation"]["enabled"].get<bool>());
   EXPECT_EQ(report["validation"]["messages"].get<int>(), 0);
+  EXPECT_EQ(report["frames"].size(), loadCapture(shipped).frames.size());
+  EXPECT_NE(r.output.find("validation: 0 messages"), std::string::npos);
 }
 
 struct BadRun {
