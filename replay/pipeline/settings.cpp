@@ -99,9 +99,13 @@ void applyTechnique(AoSettings& settings, AoTechnique technique) {
   }
 }
 
+// The float's shortest decimal form: 0.615f is reported as 0.615, not 0.6150000095367432.
+static double asWritten(float value) { return std::stod(fmt::format("{}", value)); }
+
 nlohmann::json toJson(const AoSettings& s) {
-  return {{"technique", techniqueName(s.technique)}, {"radius", s.radius}, {"slices", s.slices}, {"steps", s.steps}, {"falloff", s.falloff}, {"power", s.power},
-          {"thin", s.thin},     {"spatial", s.spatial}, {"temporal", s.temporal}, {"bent", s.bent}};
+  return {{"technique", techniqueName(s.technique)}, {"radius", asWritten(s.radius)}, {"slices", s.slices},
+          {"steps", s.steps}, {"falloff", asWritten(s.falloff)}, {"power", asWritten(s.power)},
+          {"thin", asWritten(s.thin)}, {"spatial", s.spatial}, {"temporal", asWritten(s.temporal)}, {"bent", s.bent}};
 }
 
 }  // namespace aor
