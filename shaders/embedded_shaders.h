@@ -12,6 +12,7 @@ namespace aor::spirv {
 AOR_DECLARE_SHADER(linearize_depth)
 AOR_DECLARE_SHADER(reconstruct_normals)
 AOR_DECLARE_SHADER(gtao)
+AOR_DECLARE_SHADER(gtao_reference)
 AOR_DECLARE_SHADER(spatial_denoise)
 AOR_DECLARE_SHADER(temporal_denoise)
 #undef AOR_DECLARE_SHADER

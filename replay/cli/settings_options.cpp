@@ -14,6 +14,8 @@ void SettingsOptions::add(CLI::App& command) {
   command.add_option("--set", assignments,
                      "KEY=VALUE, repeatable; keys: radius slices steps falloff power thin spatial temporal bent");
   command.add_option("--frames", frames, "half-open frame range A:B (default: all)");
+  command.add_option("--technique", technique,
+                     "gtao (default), or reference: the GTAO integral evaluated exhaustively, no noise, no denoise");
 }
 
 AoSettings SettingsOptions::resolve(const Capture& capture) const {
@@ -23,6 +25,7 @@ AoSettings SettingsOptions::resolve(const Capture& capture) const {
   for (const auto& a : assignments) radiusGiven |= a.rfind("radius=", 0) == 0;
   AoSettings s = settingsForCapture(capture, base, radiusGiven);
   for (const auto& a : assignments) applySetting(s, a);
+  applyTechnique(s, parseTechnique(technique));
   return s;
 }
 

@@ -12,6 +12,7 @@ namespace aor::cli {
 
 struct SettingsOptions {
   std::string preset = "high";
+  std::string technique = "gtao";        // --technique gtao|reference
   std::vector<std::string> assignments;  // --set KEY=VALUE
   std::string frames;                    // --frames A:B (half-open)
   void add(CLI::App& command);

@@ -53,6 +53,18 @@ const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, boo
   return it->second;
 }
 
+const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool viewSpaceNormals) {
+  auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao_reference:{}:{}:{}", slices, bent, viewSpaceNormals));
+  if (fresh) {
+    VkDescriptorType bindings[] = {kSampled, kSampled, kStorage};
+    SpecializationValue spec[] = {{uint32_t(shader::kGtaoSpecSlices), uint32_t(slices)},
+                                  {uint32_t(shader::kGtaoSpecBent), bent ? 1u : 0u},
+                                  {uint32_t(shader::kGtaoSpecViewNormals), viewSpaceNormals ? 1u : 0u}};
+    it->second = createComputePipeline(vk_, spirv::gtao_reference_code(), bindings, sizeof(shader::GtaoConstants), spec);
+  }
+  return it->second;
+}
+
 const ComputePipeline& PassPipelines::spatial(bool bent) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("spatial:{}", bent));
   if (fresh) {

@@ -26,6 +26,7 @@ class PassPipelines {
   const ComputePipeline& linearizeDepth();
   const ComputePipeline& reconstructNormals();
   const ComputePipeline& gtao(int slices, int steps, bool bent, bool viewSpaceNormals);
+  const ComputePipeline& gtaoReference(int slices, bool bent, bool viewSpaceNormals);
   const ComputePipeline& spatial(bool bent);
   const ComputePipeline& temporal(bool bent, bool hasHistory);
 
@@ -59,6 +60,12 @@ struct GtaoInputs {
 shader::GtaoConstants gtaoConstants(const FrameCamera& camera, const AoSettings& settings);
 graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                               const AoSettings& settings, const GtaoInputs& inputs);
+// The screen-space reference (`technique=reference`, shaders/gtao_reference.comp): the GTAO
+// integral over kReferenceSlices noise-free slices and every pixel out to the radius. Writes the
+// same image as addGtaoPass; spatial and temporal passes are not run after it.
+inline constexpr int kReferenceSlices = 32;
+graph::ResourceId addGtaoReferencePass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
+                                       const AoSettings& settings, const GtaoInputs& inputs);
 graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                                  const AoSettings& settings, graph::ResourceId ao, graph::ResourceId distance);
 struct TemporalInputs {

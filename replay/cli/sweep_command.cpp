@@ -1,0 +1,177 @@
+// `aoreplay sweep`: replays a capture under several configurations in one Vulkan context and
+// puts each one's GPU time next to its error against the reference (table, sweep.json/.csv/.svg).
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/handlers.h"
+#include "cli/settings_options.h"
+#include "metrics/error_metrics.h"
+#include "pipeline/replayer.h"
+#include "report/output_directory.h"
+#include "report/run_outputs.h"
+#include "report/stats.h"
+#include "report/sweep.h"
+#include "vk/context.h"
+
+namespace aor::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SweepArgs {
+  std::string capture;
+  std::string presets = "low,medium,high,ultra";
+  std::vector<std::string> grid;
+  std::vector<std::string> assignments;
+  std::string frames;
+  int repeat = 3;
+  int warmup = 1;
+  std::string out;
+  std::string device;
+};
+
+struct SweepContext {
+  VulkanContext vk;
+  explicit SweepContext(const std::string& device) { createContext(vk, {device, false}); }
+  ~SweepContext() { destroyContext(vk); }
+};
+
+// Reference visibility per frame index: the capture's ray-traced one when every replayed frame
+// has it, else the screen-space reference technique run once with the base settings.
+struct SweepReference {
+  std::string kind;
+  std::map<int, std::vector<float>> frames;
+};
+
+SweepReference sweepReference(VulkanContext& vk, const Capture& capture, const ReplayOptions& base) {
+  SweepReference ref{"ray-traced", {}};
+  bool complete = true;
+  for (int i = base.frameBegin; i < base.frameEnd && complete; ++i) {
+    auto r = loadReference(capture, i);
+    if (r) ref.frames[i] = std::move(*r);
+    complete = r.has_value();
+  }
+  if (complete) return ref;
+  ref = {"screen-space", {}};
+  ReplayOptions options = base;
+  options.repeat = 1;
+  options.warmup = 0;
+  applyTechnique(options.settings, AoTechnique::Reference);
+  fmt::print(stderr, "the capture has no ray-traced reference: computing the screen-space reference\n");
+  replayCapture(vk, capture, options, [&](const FrameOutput& f) { ref.frames[f.index] = f.visibility; });
+  return ref;
+}
+
+SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions options, const SweepConfig& config,
+                 const SweepReference& reference) {
+  options.settings = config.settings;
+  ErrorAnalysis errors(reference.kind);
+  auto result = replayCapture(vk, capture, options, [&](const FrameOutput& f) {
+    const auto& desc = capture.frames[size_t(f.index)];
+    AnalyzedFrame analyzed;
+    analyzed.index = f.index;
+    analyzed.width = f.width;
+    analyzed.height = f.height;
+    analyzed.visibility = f.visibility.data();
+    analyzed.depth = f.gbuffer->depth.data();
+    analyzed.view = desc.view;
+    analyzed.projection = desc.projection;
+    analyzed.reference = &reference.frames.at(f.index);
+    errors.addFrame(analyzed);
+  });
+  SweepRow row{config};
+  std::vector<std::pair<std::string, std::vector<double>>> samples;
+  for (const auto& frame : result.frames)
+    for (const auto& pass : frame.passes) {
+      auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.first == pass.name; });
+      if (it == samples.end()) it = samples.insert(samples.end(), {pass.name, {}});
+      it->second.insert(it->second.end(), pass.durationsMs.begin(), pass.durationsMs.end());
+    }
+  for (auto& [name, durations] : samples) {
+    double median = summarize(durations).median;
+    row.passMs.emplace_back(name, median);
+    row.totalMs += median;
+  }
+  row.error = errors.summaryJson();
+  row.rmse = row.error["rmse"].get<double>();
+  row.ssim = row.error["ssim"].get<double>();
+  return row;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+}
+
+int sweepCommand(const SweepArgs& args) {
+  Capture capture = loadCapture(args.capture);
+  SettingsOptions parsed;
+  parsed.assignments = args.assignments;
+  parsed.frames = args.frames;
+  ReplayOptions options;
+  options.settings = parsed.resolve(capture);  // radius from the capture, then --set
+  std::tie(options.frameBegin, options.frameEnd) = parsed.frameRange(capture);
+  options.repeat = args.repeat;
+  options.warmup = args.warmup;
+  std::vector<std::string> presets;
+  for (size_t start = 0; start <= args.presets.size();) {
+    size_t comma = std::min(args.presets.find(',', start), args.presets.size());
+    presets.push_back(args.presets.substr(start, comma - start));
+    start = comma + 1;
+  }
+  auto configs = expandSweep(options.settings, presets, args.grid);  // bad presets/grids fail before any work
+  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out));
+
+  SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
+  std::vector<SweepRow> rows;
+  {
+    SweepContext context(args.device);
+    info.device = context.vk.info.name;
+    auto reference = sweepReference(context.vk, capture, options);
+    info.referenceKind = reference.kind;
+    for (size_t i = 0; i < configs.size(); ++i) {
+      fmt::print(stderr, "[{}/{}] {}\n", i + 1, configs.size(), configs[i].name);
+      rows.push_back(measure(context.vk, capture, options, configs[i], reference));
+    }
+    vkDeviceWaitIdle(context.vk.device);
+  }
+  markPareto(rows);
+  writeJson(out.staging() / "sweep.json", sweepJson(info, rows));
+  writeText(out.staging() / "sweep.csv", sweepCsv(rows));
+  writeText(out.staging() / "sweep.svg", sweepSvg(info, rows));
+  out.commit();
+
+  fmt::print("capture: {} (frames {}:{}), device: {}, error against the {} reference, {} timed run(s) per frame\n",
+             capture.name, options.frameBegin, options.frameEnd, info.device, info.referenceKind, args.repeat);
+  fmt::print("{}", sweepTable(rows));
+  fmt::print("outputs: {}/ (sweep.json, sweep.csv, sweep.svg)\n", out.finalPath().string());
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerSweepCommand(CLI::App& app) {
+  auto args = std::make_shared<SweepArgs>();
+  auto* cmd = app.add_subcommand("sweep", "replay a capture under several settings: error against GPU time, Pareto front");
+  cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
+  cmd->add_option("--presets", args->presets, "comma-separated presets to run")->capture_default_str();
+  cmd->add_option("--grid", args->grid,
+                  "KEY=v1,v2,..., repeatable: every preset is run with every combination (keys: --set keys, technique)");
+  cmd->add_option("--set", args->assignments, "KEY=VALUE applied to every configuration, before the grid");
+  cmd->add_option("--frames", args->frames, "half-open frame range A:B (default: all)");
+  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();
+  cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
+  cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
+  handlers()["sweep"] = [args] { return sweepCommand(*args); };
+}
+
+}  // namespace aor::cli
