@@ -19,3 +19,9 @@ gen pit-cut pit --size 320x180 --frames 4 --path cut --reference-spp 128
 gen sphere-orbit sphere --size 320x180 --frames 6 --path orbit --reference-spp 128
 gen bunny-orbit bunny --size 320x180 --frames 8 --path orbit --reference-spp 64
 gen thin-strafe thin --size 320x180 --frames 8 --path strafe --reference-spp 64
+# Temporal stability (issue "Temporal stability"): a still camera (pure flicker), a fast strafe past
+# the front buildings (disocclusion) and a path with a cut; small, 16 frames each, so history has
+# time to settle at the weights the tests use.
+gen boxes-static boxes --size 160x90 --frames 16 --path static --reference-spp 64
+gen boxes-strafe boxes --size 160x90 --frames 16 --path strafe --reference-spp 64
+gen boxes-cut boxes --size 160x90 --frames 16 --path cut --reference-spp 64

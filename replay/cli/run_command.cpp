@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include <fmt/format.h>
@@ -11,8 +12,10 @@
 #include "cli/settings_options.h"
 #include "metrics/run_analysis.h"
 #include "pipeline/replayer.h"
+#include "report/expectations.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
+#include "report/temporal_plot.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
@@ -31,6 +34,8 @@ struct RunArgs {
   bool validate = false;
   bool noImages = false;
   bool keepHistoryOnCut = false;
+  CameraJumpLimits cameraJump;
+  std::string expect;  // thresholds file (report/expectations.h)
 };
 
 // Owns the Vulkan context for one command so it is destroyed (and its last validation messages
@@ -47,12 +52,15 @@ void printProgress(int done, int total) {
   if (done == total) fmt::print(stderr, "\n");
 }
 
-void analyzeFrame(RunAnalysis& analysis, const Capture& capture, const FrameOutput& frame) {
+void analyzeFrame(RunAnalysis& analysis, const Capture& capture, const FrameOutput& frame, float historyWeight,
+                  const std::map<int, std::vector<float>>& noHistory) {
   const auto& desc = capture.frames[size_t(frame.index)];
   auto reference = loadReference(capture, frame.index);
   AnalyzedFrame analyzed{frame.index, frame.width, frame.height, frame.visibility.data(), frame.gbuffer->depth.data(),
                          desc.view, desc.projection, desc.cut, frame.historyValid, frame.resetReason,
                          reference ? &*reference : nullptr};
+  analyzed.historyWeight = historyWeight;
+  if (auto it = noHistory.find(frame.index); it != noHistory.end()) analyzed.noHistory = it->second.data();
   analysis.addFrame(analyzed);
 }
 
@@ -62,14 +70,34 @@ void addAnalysis(nlohmann::json& report, const RunAnalysis& analysis) {
   report["metrics"] = analysis.summaryJson();
 }
 
+// Without references, ghosting is measured against the same frames replayed with temporal=0 (one
+// extra untimed replay, only for runs that keep history).
+std::map<int, std::vector<float>> replayWithoutHistory(VulkanContext& vk, const Capture& capture, const ReplayOptions& run) {
+  std::map<int, std::vector<float>> frames;
+  int end = run.frameEnd < 0 ? int(capture.frames.size()) : run.frameEnd;
+  bool allReferenced = true;
+  for (int i = run.frameBegin; i < end; ++i) allReferenced &= capture.frames[size_t(i)].reference.has_value();
+  if (allReferenced || run.settings.temporal <= 0.0f || end - run.frameBegin < 2) return frames;
+  ReplayOptions options;
+  options.settings = run.settings;
+  options.settings.temporal = 0.0f;
+  options.frameBegin = run.frameBegin;
+  options.frameEnd = run.frameEnd;
+  replayCapture(vk, capture, options, [&](const FrameOutput& f) { frames[f.index] = f.visibility; });
+  return frames;
+}
+
 int runCommand(const RunArgs& args) {
   Capture capture = loadCapture(args.capture);
+  std::vector<Threshold> expectations;
+  if (!args.expect.empty()) expectations = loadExpectations(args.expect);
   ReplayOptions options;
   options.settings = args.settings.resolve(capture);
   std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   options.keepHistoryOnCut = args.keepHistoryOnCut;
+  options.cameraJump = args.cameraJump;
   options.progress = printProgress;
   OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out));
 
@@ -78,9 +106,10 @@ int runCommand(const RunArgs& args) {
   size_t validationMessages = 0;
   {
     ContextScope context({args.device, args.validate});
+    auto noHistory = replayWithoutHistory(context.vk, capture, options);
     result = replayCapture(context.vk, capture, options, [&](const FrameOutput& frame) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
-      analyzeFrame(analysis, capture, frame);
+      analyzeFrame(analysis, capture, frame, options.settings.temporal, noHistory);
     });
     vkDeviceWaitIdle(context.vk.device);
     destroyContext(context.vk);
@@ -91,6 +120,7 @@ int runCommand(const RunArgs& args) {
   report["validation"] = {{"enabled", args.validate}, {"messages", validationMessages}};
   writeJson(out.staging() / "report.json", report);
   writeJson(out.staging() / "trace.json", buildTrace(result));
+  writeTemporalPlots(out.staging(), report);
 
   fmt::print("device: {} ({})\n", result.device.name, result.device.driver);
   fmt::print("capture: {} ({}x{}, frames {}:{}), settings: {}\n", capture.name, capture.width, capture.height,
@@ -101,11 +131,19 @@ int runCommand(const RunArgs& args) {
     fmt::print(stderr, "aoreplay: {} validation message(s); the run failed and wrote no results\n", validationMessages);
     return kExitFailed;
   }
+  // Before the commit: a threshold naming a metric the report lacks is bad input and leaves nothing.
+  auto failures = checkExpectations(expectations, report, args.expect);
   out.commit();
   if (args.validate) fmt::print("validation: 0 messages (synchronization validation on)\n");
   fmt::print("outputs: {}/ (ao/NNNN.exr, ao/NNNN.png{}, report.json, trace.json)\n", out.finalPath().string(),
              args.noImages ? " skipped by --no-images" : "");
-  return kExitOk;
+  if (failures.empty()) {
+    if (!expectations.empty()) fmt::print("expectations: all {} met ({})\n", expectations.size(), args.expect);
+    return kExitOk;
+  }
+  fmt::print(stderr, "aoreplay: {} expectation(s) from {} not met:\n", failures.size(), args.expect);
+  for (const auto& f : failures) fmt::print(stderr, "  {}\n", f.describe());
+  return kExitFailed;
 }
 
 }  // namespace
@@ -121,6 +159,14 @@ void registerRunCommand(CLI::App& app) {
   cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
   cmd->add_flag("--validate", args->validate, "Khronos validation + synchronization validation; any message fails");
   cmd->add_flag("--no-images", args->noImages, "skip writing per-frame EXR/PNG");
+  cmd->add_option("--expect", args->expect,
+                  "JSON thresholds {\"max\": {METRIC: limit}, \"min\": {...}}; any violation: exit 1 after writing outputs");
+  cmd->add_option("--jump-angle", args->cameraJump.maxRotationDegrees,
+                  "reset history when the camera turns more than this many degrees between frames (default 30, 0 = off)")
+      ->check(CLI::Range(0.0, 180.0));
+  cmd->add_option("--jump-distance", args->cameraJump.maxMoveFraction,
+                  "reset history when the camera moves more than this fraction of the median view distance (default 0.5, 0 = off)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
                 "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")
       ->group("");

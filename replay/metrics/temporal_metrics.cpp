@@ -51,7 +51,7 @@ double meanAbsError(const float* output, const float* truth, const FrameGeometry
 
 nlohmann::json responseJson(const ResponseSummary& r) {
   return {{"response_frames", r.responseFrames}, {"ghost_energy", r.ghostEnergy}, {"settled_error", r.settled},
-          {"settled", r.settledReached}};
+          {"settled", r.settledReached}, {"ema_response_frames", r.emaFrames}};
 }
 
 // Mean, max and the frame of the max of one per-frame value over the frames that measured it.
@@ -110,7 +110,7 @@ void TemporalAnalysis::addFrame(const AnalyzedFrame& frame) {
   }
 
   auto next = std::make_unique<Previous>();
-  trackAges(frame, geometry, reprojection.get(), truth, next->age, next->sinceDisocclusion);
+  trackAges(frame, geometry, reprojection.get(), truth, *next);
   size_t pixels = geometry.distance.size();
   next->visibility.assign(frame.visibility, frame.visibility + pixels);
   if (frame.reference) next->reference = *frame.reference;
@@ -119,32 +119,37 @@ void TemporalAnalysis::addFrame(const AnalyzedFrame& frame) {
   frames_.push_back(std::move(m));
 }
 
-// Frames since each pixel's history started, followed through the reprojection; pixels whose
-// history started at a disocclusion add their error to the curve at their age.
+// Frames since each pixel's history started, followed through the reprojection. Pixels whose
+// history started at a disocclusion feed the disocclusion curve.
 void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry& geometry,
-                                 const Reprojection* reprojection, const float* truth, std::vector<int>& age,
-                                 std::vector<bool>& sinceDisocclusion) {
+                                 const Reprojection* reprojection, const float* truth, Previous& next) {
   size_t pixels = geometry.distance.size();
-  age.assign(pixels, -1);
-  sinceDisocclusion.assign(pixels, false);
+  next.age.assign(pixels, -1);
+  next.sinceDisocclusion.assign(pixels, false);
+  next.error.assign(pixels, -1.0f);
   if (historyWeight_ <= 0.0f) return;  // no history: nothing to follow
   bool continued = frame.historyValid && reprojection;
   for (size_t i = 0; i < pixels; ++i) {
     if (geometry.isSky(i)) continue;
-    age[i] = 0;
+    if (truth) next.error[i] = std::abs(frame.visibility[i] - truth[i]);
+    next.age[i] = 0;
     if (!continued) continue;  // reset: every pixel starts over, and not from a disocclusion
-    if (reprojection->state[i] == PixelHistory::Reprojected) {
-      size_t from = reprojection->nearestPrevious(i, geometry.width, geometry.height);
-      if (previous_->age[from] >= 0) {
-        age[i] = std::min(previous_->age[from] + 1, kMaxTrackedAge);
-        sinceDisocclusion[i] = previous_->sinceDisocclusion[from];
+    if (reprojection->state[i] != PixelHistory::Reprojected) {
+      next.sinceDisocclusion[i] = true;
+      if (truth) {
+        freshErrorSum_ += next.error[i];
+        ++freshCount_;
       }
-    } else {
-      sinceDisocclusion[i] = true;
+      continue;
     }
-    if (truth && sinceDisocclusion[i]) {
-      ageErrorSum_[size_t(age[i])] += std::abs(double(frame.visibility[i]) - double(truth[i]));
-      ++ageCount_[size_t(age[i])];
+    size_t from = reprojection->nearestPrevious(i, geometry.width, geometry.height);
+    if (previous_->age[from] < 0) continue;
+    int age = std::min(previous_->age[from] + 1, kMaxTrackedAge);
+    next.age[i] = age;
+    next.sinceDisocclusion[i] = previous_->sinceDisocclusion[from];
+    if (next.sinceDisocclusion[i] && truth && previous_->error[from] >= 0.0f) {
+      stepSum_[size_t(age)] += double(next.error[i]) - double(previous_->error[from]);
+      ++stepCount_[size_t(age)];
     }
   }
 }
@@ -158,9 +163,18 @@ NoiseSummary TemporalAnalysis::staticNoise() const {
 
 std::vector<double> TemporalAnalysis::disocclusionCurve() const {
   std::vector<double> curve;
-  for (size_t a = 0; a < ageCount_.size() && ageCount_[a] >= kMinPixelsPerAge; ++a)
-    curve.push_back(ageErrorSum_[a] / double(ageCount_[a]));
+  if (freshCount_ < kMinPixelsPerAge) return curve;
+  curve.push_back(freshErrorSum_ / double(freshCount_));
+  for (size_t a = 1; a < stepCount_.size() && stepCount_[a] >= kMinPixelsPerAge; ++a)
+    curve.push_back(curve.back() + stepSum_[a] / double(stepCount_[a]));
   return curve;
+}
+
+std::vector<size_t> TemporalAnalysis::disocclusionPixels() const {
+  std::vector<size_t> pixels{freshCount_};
+  pixels.insert(pixels.end(), stepCount_.begin() + 1, stepCount_.end());
+  pixels.resize(disocclusionCurve().size());
+  return pixels;
 }
 
 // abs_error from each history reset up to the next one (only runs that keep history have resets
@@ -190,9 +204,8 @@ nlohmann::json TemporalAnalysis::frameJson(int index) const {
   if (it->absError >= 0) j["abs_error"] = it->absError;
   std::vector<size_t> starts;
   auto curves = resetCurves(&starts);
-  int predicted = emaResponseFrames(historyWeight_);
   for (size_t c = 0; c < curves.size(); ++c)
-    if (frames_[starts[c]].index == index) j.update(responseJson(analyzeResponse(curves[c], predicted)));
+    if (frames_[starts[c]].index == index) j.update(responseJson(analyzeResponse(curves[c], historyWeight_)));
   if (j.empty()) return nullptr;
   return j;
 }
@@ -225,16 +238,15 @@ nlohmann::json TemporalAnalysis::summaryJson() const {
   nlohmann::json resets = nlohmann::json::array();
   for (size_t c = 0; c < curves.size(); ++c) {
     nlohmann::json r{{"frame", frames_[starts[c]].index}, {"reason", frames_[starts[c]].resetReason}, {"abs_error", curves[c]}};
-    r.update(responseJson(analyzeResponse(curves[c], predicted)));
+    r.update(responseJson(analyzeResponse(curves[c], historyWeight_)));
     resets.push_back(r);
   }
   j["resets"] = resets;
 
   auto curve = disocclusionCurve();
   if (!curve.empty()) {
-    std::vector<size_t> counts(ageCount_.begin(), ageCount_.begin() + std::ptrdiff_t(curve.size()));
-    nlohmann::json d{{"abs_error_by_age", curve}, {"pixels_by_age", counts}};
-    d.update(responseJson(analyzeResponse(curve, predicted)));
+    nlohmann::json d{{"abs_error_by_age", curve}, {"pixels_by_age", disocclusionPixels()}};
+    d.update(responseJson(analyzeResponse(curve, historyWeight_)));
     j["disocclusion"] = d;
   } else {
     j["disocclusion"] = nullptr;

@@ -17,8 +17,10 @@
 // Summary (metrics.temporal): static-camera temporal noise (per-pixel standard deviation over
 // windows of >= 3 frames with an unchanged camera; mean and p99), means and maxima of the per-frame
 // values, one entry per reset, and the disocclusion curve: abs_error of pixels by the number of
-// frames since they were disoccluded (followed through the reprojection), with its response time
-// and ghost energy; all compared with the EMA prediction w^n (w = history weight).
+// frames since they were disoccluded, with its response time and ghost energy; all compared with
+// the EMA prediction w^n (w = history weight). Pixels are followed through the reprojection, and the
+// curve is chained from paired per-pixel changes (age a -> a+1 over the pixels seen at both ages),
+// so pixels leaving the screen or being covered again do not change the population it describes.
 #include <map>
 #include <memory>
 #include <vector>
@@ -54,6 +56,7 @@ class TemporalAnalysis {
   const std::vector<TemporalFrameMetrics>& frames() const { return frames_; }
   NoiseSummary staticNoise() const;
   std::vector<double> disocclusionCurve() const;  // abs_error by frames since disocclusion
+  std::vector<size_t> disocclusionPixels() const;  // pixels behind each point of the curve
 
  private:
   struct Previous {
@@ -62,9 +65,10 @@ class TemporalAnalysis {
     std::vector<float> reference;  // empty when the frame had none
     std::vector<int> age;          // frames since the pixel's history started, -1 sky
     std::vector<bool> sinceDisocclusion;  // the history started at a disocclusion (not a reset)
+    std::vector<float> error;      // |output - truth| per pixel, < 0 when unknown
   };
   void trackAges(const AnalyzedFrame& frame, const FrameGeometry& geometry, const Reprojection* reprojection,
-                 const float* truth, std::vector<int>& age, std::vector<bool>& sinceDisocclusion);
+                 const float* truth, Previous& next);
   std::vector<std::vector<double>> resetCurves(std::vector<size_t>* starts) const;
 
   float historyWeight_ = 0;
@@ -74,8 +78,12 @@ class TemporalAnalysis {
   StaticWindow window_;
   std::vector<float> closedWindowDeviations_;
   std::vector<std::pair<int, int>> staticWindows_;  // [first, last] of windows long enough to count
-  std::vector<double> ageErrorSum_ = std::vector<double>(kMaxTrackedAge + 1, 0.0);
-  std::vector<size_t> ageCount_ = std::vector<size_t>(kMaxTrackedAge + 1, 0);
+  // Disocclusion curve: errors of freshly disoccluded pixels (age 0), and per age a >= 1 the sum of
+  // each pixel's error change from age a-1 to a.
+  double freshErrorSum_ = 0;
+  size_t freshCount_ = 0;
+  std::vector<double> stepSum_ = std::vector<double>(kMaxTrackedAge + 1, 0.0);
+  std::vector<size_t> stepCount_ = std::vector<size_t>(kMaxTrackedAge + 1, 0);
 };
 
 }  // namespace aor

@@ -5,16 +5,19 @@
 
 namespace aor {
 
-ResponseSummary analyzeResponse(const std::vector<double>& errors, int predictedFrames) {
+ResponseSummary analyzeResponse(const std::vector<double>& errors, double historyWeight) {
   ResponseSummary r;
   if (errors.empty()) return r;
   int n = int(errors.size());
   int tailStart = std::max(0, n - kSettleTail);
   for (int i = tailStart; i < n; ++i) r.settled += errors[size_t(i)];
   r.settled /= double(n - tailStart);
-  r.settledReached = tailStart >= predictedFrames;
+  r.settledReached = tailStart >= emaResponseFrames(historyWeight);
   // An exactly zero settled error (a perfect output) still needs a band to fall into.
   double band = std::max(kResponseBand * r.settled, 1e-9);
+  double excess = std::abs(errors[0] - r.settled);
+  if (excess > band && historyWeight > 0.0 && historyWeight < 1.0)
+    r.emaFrames = int(std::ceil(std::log(band / excess) / std::log(historyWeight)));
   r.responseFrames = n;
   for (int i = 0; i < n; ++i)
     if (std::abs(errors[size_t(i)] - r.settled) <= band) {

@@ -13,11 +13,14 @@ struct ResponseSummary {
   double settled = 0;        // mean of the last kSettleTail values of the curve
   int responseFrames = 0;    // first n with |e_n - settled| <= 10% of settled
   double ghostEnergy = 0;    // sum over n of max(0, e_n - settled)
-  bool settledReached = false;  // the tail lies past the EMA's predicted response, so `settled` is one
+  bool settledReached = false;  // the tail lies past emaResponseFrames(w), so `settled` is one
+  // What a plain EMA predicts for this curve: a ghost of the measured initial excess e_0 - settled
+  // that keeps w^n of itself falls inside the band after n >= ln(0.1 settled / excess) / ln w frames.
+  int emaFrames = 0;
 };
 
-// `predictedFrames`: emaResponseFrames() of the run, used only for settledReached. Empty curve: zeros.
-ResponseSummary analyzeResponse(const std::vector<double>& errors, int predictedFrames);
+// `historyWeight` w: the run's `temporal` setting. Empty curve: zeros.
+ResponseSummary analyzeResponse(const std::vector<double>& errors, double historyWeight);
 
 // The temporal pass blends out = mix(current, history, w) with history weight w (setting `temporal`;
 // the alpha = 1 - w). Anything stale in the history therefore keeps the fraction w^n of its

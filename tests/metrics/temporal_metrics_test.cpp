@@ -245,6 +245,27 @@ TEST(TemporalMetrics, DisocclusionCurveFollowsRevealedPixelsAndGivesTheEmaRespon
   EXPECT_EQ(analysis.summaryJson()["ema"]["predicted_response_frames"], emaResponseFrames(w));
 }
 
+// Revealed pixels with different (constant) errors, half of them covered again later: a plain
+// mean by age would change as that half drops out (0.2 -> 0.15); the paired curve stays flat.
+TEST(TemporalMetrics, DisocclusionCurveDoesNotChangeWhenPixelsDropOut) {
+  TemporalAnalysis analysis;
+  for (int t = 0; t < 8; ++t) {
+    Frame f = t == 0 ? firstFrame() : Frame{};
+    f.index = t;
+    f.depth = t == 0 ? wallDepth(10, 20) : t >= 3 ? wallDepth(15, 20) : wallDepth();
+    f.reference.assign(kPixels, 0.7f);
+    for (size_t i = 0; i < kPixels; ++i) {
+      int x = int(i % kWidth);
+      float error = x < 10 || x >= 20 ? 0.0f : x < 15 ? 0.1f : t < 3 ? 0.3f : 0.2f;
+      f.visibility[i] = f.reference[i] - error;
+    }
+    analysis.addFrame(f.analyzed());
+  }
+  auto curve = analysis.disocclusionCurve();
+  ASSERT_GE(curve.size(), 5u);
+  for (size_t a = 0; a < curve.size(); ++a) EXPECT_NEAR(curve[a], 0.2, 1e-6) << a;
+}
+
 TEST(TemporalMetrics, EveryResetStartsACurveUntilTheNextReset) {
   TemporalAnalysis analysis;
   for (int t = 0; t < 8; ++t) {

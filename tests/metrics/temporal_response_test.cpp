@@ -28,27 +28,29 @@ TEST(TemporalResponse, DecayingGhostOnTopOfASettledErrorGivesTheEmaResponse) {
   const double settled = 0.02, ghost = 0.3, w = 0.6;
   std::vector<double> curve;
   for (int n = 0; n < 30; ++n) curve.push_back(settled + ghost * std::pow(w, n));
-  auto r = analyzeResponse(curve, emaResponseFrames(w));
+  auto r = analyzeResponse(curve, w);
   // Tail mean: the ghost left in frames 27..29 is below 1e-6.
   EXPECT_NEAR(r.settled, settled, 1e-6);
   EXPECT_TRUE(r.settledReached);
   // First n with ghost * w^n <= 10% of settled: 0.3 * 0.6^n <= 0.002 -> n >= 9.8.
   EXPECT_EQ(r.responseFrames, 10);
+  // The EMA's own prediction for this excess: ceil(ln(0.1 * 0.02 / 0.3) / ln 0.6) = 10.
+  EXPECT_EQ(r.emaFrames, 10);
   // Sum of the excess: ghost * (1 - w^30) / (1 - w), less the tiny tail part counted in `settled`.
   EXPECT_NEAR(r.ghostEnergy, ghost / (1.0 - w), 1e-4);
 }
 
 TEST(TemporalResponse, FlatCurveRespondsAtOnceAndShortCurveIsNotSettled) {
-  auto flat = analyzeResponse({0.05, 0.05, 0.05, 0.05}, 2);
+  auto flat = analyzeResponse({0.05, 0.05, 0.05, 0.05}, 0.3);  // w = 0.3: EMA predicts 2 frames
   EXPECT_EQ(flat.responseFrames, 0);
   EXPECT_DOUBLE_EQ(flat.ghostEnergy, 0.0);
   EXPECT_FALSE(flat.settledReached);  // the tail starts at frame 1, before the predicted 2
-  auto perfect = analyzeResponse({0.0, 0.0, 0.0}, 0);
+  auto perfect = analyzeResponse({0.0, 0.0, 0.0}, 0.0);
   EXPECT_EQ(perfect.responseFrames, 0);
-  auto empty = analyzeResponse({}, 3);
+  auto empty = analyzeResponse({}, 0.5);
   EXPECT_EQ(empty.responseFrames, 0);
   // Rising towards the settled value (a no-history comparison right after a reset) counts too.
-  auto rising = analyzeResponse({0.0, 0.05, 0.08, 0.1, 0.1, 0.1}, 1);
+  auto rising = analyzeResponse({0.0, 0.05, 0.08, 0.1, 0.1, 0.1}, 0.1);
   EXPECT_NEAR(rising.settled, 0.1, 1e-12);
   EXPECT_EQ(rising.responseFrames, 3);
   EXPECT_DOUBLE_EQ(rising.ghostEnergy, 0.0);
