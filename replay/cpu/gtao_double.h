@@ -1,0 +1,34 @@
+#pragma once
+// Double-precision model of the GTAO main pass, the yardstick for float32 drift (PRECISION.md):
+// the same shader code (gtao_pixel.glsl, linearize_depth.h) compiled with double arithmetic, the
+// same sample pattern (noise and sample pixels taken from the float code) and the same inputs the
+// GPU receives (float depth, half-precision normals). Everything derived from them (projection
+// terms, linear distance, view positions, angles, integrals) is computed in double.
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "capture/capture.h"
+#include "passes/passes.h"
+#include "pipeline/settings.h"
+
+namespace aor {
+
+struct DoubleAoImage {
+  int width = 0, height = 0;
+  std::vector<double> visibility;
+  std::vector<glm::dvec3> bent;  // view space; empty with bent=0
+};
+
+DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings);
+
+// How far a float32 visibility image is from the double model: maximum and 99th percentile of
+// |float - double| over all pixels, and where the maximum is.
+struct Deviation {
+  double max = 0, p99 = 0;
+  size_t worstPixel = 0;
+};
+Deviation visibilityDeviation(const DoubleAoImage& model, const std::vector<float>& visibility);
+
+}  // namespace aor
