@@ -27,16 +27,19 @@ float gtaoSampleHorizonCos(ivec2 samplePixel, vec3 centre, vec3 normal, float pr
   float dist = gtaoLoadDistance(samplePixel);
   if (dist <= 0.0f) return lowCos;
   vec3 delta = gtaoViewPosition(samplePixel, dist) - centre;
+  // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
+  // centre sooner, so thin objects do not cast a full horizon.
+  float falloffDist = length(vec3(delta.x, delta.y, delta.z * (1.0f + pc.thin)));
+  float weight = gtaoFalloffWeight(falloffDist, pc.radius, pc.falloffRange);
+  // A sample beyond the radius occludes nothing: return before the angle maths, whose result
+  // would be multiplied by 0 in mix() (0 * Inf = NaN for samples at overflowing distances).
+  if (!(weight > 0.0f)) return lowCos;
   float len = length(delta);
   if (!(len > 0.0f)) return lowCos;
   float sinE = clamp(dot(delta, normal) / (len * projectedLength), -1.0f, 1.0f);
   float cosE = sqrt(1.0f - sinE * sinE);
   // side +1: cos(n + pi/2 - e); side -1: cos(n - pi/2 + e)
   float sampleCos = cosN * sinE - side * sinN * cosE;
-  // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
-  // centre sooner, so thin objects do not cast a full horizon.
-  float falloffDist = length(vec3(delta.x, delta.y, delta.z * (1.0f + pc.thin)));
-  float weight = gtaoFalloffWeight(falloffDist, pc.radius, pc.falloffRange);
   return mix(lowCos, sampleCos, weight);
 }
 
@@ -60,16 +63,23 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
     float phi = (float(slice) + noise.x) * (kPi / float(kSlices));
     vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
     vec3 direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0f));
-    vec3 orthoDirection = direction - dot(direction, viewDir) * viewDir;
+    // Unit: direction has z = 0 and viewDir.z > 0, so they are never parallel.
+    vec3 orthoDirection = normalize(direction - dot(direction, viewDir) * viewDir);
     vec3 axis = normalize(cross(direction, viewDir));
     vec3 projectedNormal = normal - axis * dot(normal, axis);
     float projectedLength = length(projectedNormal);
     if (!(projectedLength > 1e-6f)) continue;  // normal along the slice axis: the slice sees nothing
 
-    float signN = dot(orthoDirection, projectedNormal) >= 0.0f ? 1.0f : -1.0f;
-    float cosN = clamp(dot(projectedNormal, viewDir) / projectedLength, 0.0f, 1.0f);
-    float n = signN * acos(cosN);
-    float sinN = signN * sqrt(1.0f - cosN * cosN);
+    // n from the projected normal's two components in the slice plane: acos(cosN) and
+    // sqrt(1 - cosN^2) lose half the digits for surfaces facing the viewer (cosN near 1; 3e-4 rad
+    // in float32), atan does not. A normal facing away is limited to the horizon (n = +-pi/2).
+    float normalAlong = dot(projectedNormal, viewDir);
+    float normalAcross = dot(projectedNormal, orthoDirection);
+    float signN = normalAcross >= 0.0f ? 1.0f : -1.0f;
+    bool facesViewer = normalAlong > 0.0f;
+    float cosN = facesViewer ? clamp(normalAlong / projectedLength, 0.0f, 1.0f) : 0.0f;
+    float n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
+    float sinN = facesViewer ? clamp(normalAcross / projectedLength, -1.0f, 1.0f) : signN;
     float lowCosPos = cos(n + kHalfPi);
     float lowCosNeg = cos(n - kHalfPi);
     float horizonCosPos = lowCosPos;

@@ -13,6 +13,10 @@ struct LinearizeConstants {
   uint pad0;
 };
 
+// Farther surfaces are treated as sky: the passes square view-space lengths (up to ~11 x distance
+// at a 170 degree FOV), which must stay finite in float32 (sqrt(FLT_MAX) ~ 1.8e19).
+AOR_CONST float kMaxViewDistance = 1e15f;
+
 // distance = P32 / (d + P22) holds for standard and reversed, finite and infinite perspective
 // projections with depth range [0,1]. Depth at or beyond the far value is sky; non-finite or
 // out-of-range depth is invalid and treated as sky as well.
@@ -22,7 +26,7 @@ AOR_FUNC float linearViewDistance(float depth, float projection22, float project
   bool outOfRange = depth < 0.0f || depth > 1.0f;
   if (!finiteDepth || beyondFar || outOfRange) return kSkyDistance;
   float dist = projection32 / (depth + projection22);
-  return (dist > 0.0f && !isinf(dist)) ? dist : kSkyDistance;
+  return (dist > 0.0f && dist <= kMaxViewDistance) ? dist : kSkyDistance;  // also false for NaN and Inf
 }
 
 #include "shared_end.h"

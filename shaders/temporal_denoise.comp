@@ -53,13 +53,13 @@ void main() {
       hi = max(hi, v);
     }
   float historyAo = kBent ? history.w : history.r;
-  float ao = mix(currentAo, clamp(historyAo, lo, hi), pc.blend);
+  float ao = temporalBlendAo(currentAo, historyAo, lo, hi, pc.blend);
   if (!kBent) {
     imageStore(aoOut, pixel, vec4(ao));
     return;
   }
   vec3 bent = mix(current.xyz, history.xyz, pc.blend);
   float len = length(bent);
-  bent = len > 1e-6 ? bent / len : current.xyz;
+  bent = (len > 1e-6 && !isinf(len)) ? bent / len : current.xyz;  // NaN/Inf history: keep the current
   imageStore(aoOut, pixel, vec4(bent, ao));
 }

@@ -31,5 +31,13 @@ AOR_FUNC bool depthConsistent(float expected, float stored, float tolerance) {
   return stored > 0.0f && abs(expected - stored) <= tolerance * expected;
 }
 
+// EMA blend of the AO with history clamped to the current neighbourhood [lo, hi]. History that is
+// not a visibility (NaN, Inf, outside [0,1]: damage from an earlier frame) is dropped, so such a
+// value leaves the history within one frame instead of spreading (clamp of NaN is undefined).
+AOR_FUNC float temporalBlendAo(float currentAo, float historyAo, float lo, float hi, float blend) {
+  bool usable = historyAo >= 0.0f && historyAo <= 1.0f;  // false for NaN
+  return usable ? mix(currentAo, clamp(historyAo, lo, hi), blend) : currentAo;
+}
+
 #include "shared_end.h"
 #endif

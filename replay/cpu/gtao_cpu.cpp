@@ -1,5 +1,7 @@
 #include "cpu/gtao_cpu.h"
 
+#include <cmath>
+
 #include <glm/gtc/packing.hpp>
 
 #include "gtao.h"
@@ -43,7 +45,7 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Ao
     for (int c = 0; c < 3; ++c) n[c] = glm::unpackHalf1x16(glm::packHalf1x16(gbuffer.normals[3 * i + size_t(c)]));
     n = worldToView * n;
     float len2 = glm::dot(n, n);
-    normals[i] = len2 > 1e-12f ? n * glm::inversesqrt(len2) : glm::vec3(0.0f);
+    normals[i] = (len2 > 1e-12f && !std::isinf(len2)) ? n * glm::inversesqrt(len2) : glm::vec3(0.0f);
   }
   shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
                              &distance, &normals};
