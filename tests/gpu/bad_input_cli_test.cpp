@@ -1,0 +1,213 @@
+// Issue 5, point 4 at the command line: every kind of bad capture makes `aoreplay run` exit with
+// code 2 and print one message naming the file, the frame (when the problem has one) and the
+// field or channel, and leaves nothing under --out (no result, no staging folder). Each case
+// starts from a valid two-frame capture and breaks one thing; the control case shows the
+// unbroken capture replays, so every failure comes from the break.
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "capture/image_io.h"
+#include "gpu_test_support.h"
+
+namespace aor::test {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+constexpr int kW = 8, kH = 6;
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary | std::ios::trunc) << text; }
+
+// A valid 8x6 capture: two frames with depth and half normals, camera looking at a tilted plane.
+fs::path validCapture(const fs::path& dir) {
+  std::vector<CaptureFrameData> frames(2);
+  for (int k = 0; k < 2; ++k) {
+    auto& f = frames[size_t(k)];
+    f.view = glm::lookAtRH(glm::vec3(0, 1, 2 + 0.1f * k), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+    f.projection = glm::perspectiveRH_ZO(glm::radians(60.0f), float(kW) / kH, 0.1f, 100.0f);
+    f.gbuffer.width = kW;
+    f.gbuffer.height = kH;
+    for (int i = 0; i < kW * kH; ++i) {
+      f.gbuffer.depth.push_back(0.95f + 0.001f * float(i % kW));
+      f.gbuffer.normals.insert(f.gbuffer.normals.end(), {0.0f, 1.0f, 0.0f});
+    }
+  }
+  writeCapture(dir, kW, kH, frames, {{"ao_radius", 0.5}});
+  return dir;
+}
+
+void writeDepthExr(const fs::path& path, int w, int h, ExrPixelType depthType, bool withDepth = true) {
+  std::vector<float> depth(size_t(w) * size_t(h), 0.9f), zero(depth.size(), 0.0f), one(depth.size(), 1.0f);
+  std::vector<ExrChannel> channels;
+  if (withDepth) channels.push_back({"depth", depthType, depth.data()});
+  channels.push_back({"normal.X", ExrPixelType::Half, zero.data()});
+  channels.push_back({"normal.Y", ExrPixelType::Half, one.data()});
+  channels.push_back({"normal.Z", ExrPixelType::Half, zero.data()});
+  writeExr(path, w, h, channels);
+}
+
+struct BadCase {
+  std::string name;
+  std::function<void(const fs::path& capture)> breakIt;
+  std::string file;   // as the message must spell it (a suffix of the path)
+  int frame;          // -1: the problem belongs to no frame
+  std::string field;  // JSON field or EXR channel, quoted in the message; empty: the file itself
+  std::string problem;
+};
+
+json readDoc(const fs::path& c) { return json::parse(readText(c / "capture.json")); }
+void editDoc(const fs::path& c, const std::function<void(json&)>& edit) {
+  json doc = readDoc(c);
+  edit(doc);
+  writeText(c / "capture.json", doc.dump(2));
+}
+
+std::vector<BadCase> badCases() {
+  std::vector<BadCase> cases;
+  auto add = [&](BadCase c) { cases.push_back(std::move(c)); };
+  add({"malformed_json", [](const fs::path& c) { writeText(c / "capture.json", "{\"format\": \"aoreplay-capture\",\n \"version\": 1,,}"); },
+       "capture.json", -1, "", "parse error at line 2"});
+  add({"wrong_format", [](const fs::path& c) { editDoc(c, [](json& d) { d["format"] = "aoreplay-trace"; }); },
+       "capture.json", -1, "format", "expected \"aoreplay-capture\""});
+  add({"wrong_version", [](const fs::path& c) { editDoc(c, [](json& d) { d["version"] = 2; }); },
+       "capture.json", -1, "version", "version 2 is not supported"});
+  add({"missing_field", [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][1].erase("projection"); }); },
+       "capture.json", 1, "projection", "missing"});
+  add({"extra_field", [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][1]["refrence"] = "x.exr"; }); },
+       "capture.json", 1, "refrence", "unknown field (did you mean \"reference\"?)"});
+  add({"extra_top_level_field_of_wrong_type",
+       [](const fs::path& c) { editDoc(c, [](json& d) { d["widht"] = "8"; }); }, "capture.json", -1, "widht",
+       "unknown field"});
+  add({"width_wrong_type", [](const fs::path& c) { editDoc(c, [](json& d) { d["width"] = "8"; }); },
+       "capture.json", -1, "width", "expected a positive integer, got string \"8\""});
+  add({"cut_wrong_type", [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][1]["cut"] = 1; }); },
+       "capture.json", 1, "cut", "expected true or false"});
+  add({"singular_view",
+       [](const fs::path& c) {
+         editDoc(c, [](json& d) { d["frames"][1]["view"] = json::array({1, 0, 0, 0, 2, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}); });
+       },
+       "capture.json", 1, "view", "singular"});
+  add({"singular_projection",
+       [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][0]["projection"][0] = 0; }); }, "capture.json", 0,
+       "projection", "singular"});
+  add({"matrix_not_16_numbers",
+       [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][0]["view"].erase(15); }); }, "capture.json", 0,
+       "view", "expected 16 numbers, got 15"});
+  add({"matrix_element_not_a_number",
+       [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][1]["projection"][5] = "x"; }); }, "capture.json",
+       1, "projection", "element 5 is not a number"});
+  add({"missing_exr", [](const fs::path& c) { fs::remove(c / "frames/0001.exr"); }, "capture.json", 1, "gbuffer",
+       "file \"frames/0001.exr\" does not exist"});
+  add({"truncated_exr",
+       [](const fs::path& c) { fs::resize_file(c / "frames/0001.exr", fs::file_size(c / "frames/0001.exr") / 2); },
+       "frames/0001.exr", 1, "", "truncated"});
+  add({"corrupt_exr", [](const fs::path& c) { writeText(c / "frames/0000.exr", std::string(300, '\x5a')); },
+       "frames/0000.exr", 0, "", "not a readable OpenEXR file"});
+  add({"missing_channel",
+       [](const fs::path& c) { writeDepthExr(c / "frames/0001.exr", kW, kH, ExrPixelType::Float, false); },
+       "frames/0001.exr", 1, "depth", "missing; a G-buffer needs a FLOAT channel named depth"});
+  add({"wrong_channel_type", [](const fs::path& c) { writeDepthExr(c / "frames/0000.exr", kW, kH, ExrPixelType::Half); },
+       "frames/0000.exr", 0, "depth", "has type HALF, expected FLOAT"});
+  add({"size_mismatch_between_frames",
+       [](const fs::path& c) { writeDepthExr(c / "frames/0001.exr", kW, kH - 1, ExrPixelType::Float); },
+       "frames/0001.exr", 1, "", "image is 8x5 but capture.json says 8x6"});
+  add({"dimensions_beyond_memory",
+       [](const fs::path& c) { editDoc(c, [](json& d) { d["width"] = 16384; d["height"] = 16384; }); },
+       "capture.json", -1, "height", "exceeds the limit of 67108864 pixels"});
+  add({"width_beyond_limit", [](const fs::path& c) { editDoc(c, [](json& d) { d["width"] = 4000000000LL; }); },
+       "capture.json", -1, "width", "exceeds the limit of 16384 pixels per side"});
+  add({"path_leaves_the_capture_folder",
+       [](const fs::path& c) { editDoc(c, [](json& d) { d["frames"][1]["gbuffer"] = "frames/../../outside.exr"; }); },
+       "capture.json", 1, "gbuffer", "leaves the capture folder"});
+  add({"symlink_leaves_the_capture_folder",
+       [](const fs::path& c) {
+         fs::copy_file(c / "frames/0001.exr", c.parent_path() / "outside.exr");
+         fs::remove(c / "frames/0001.exr");
+         fs::create_symlink(c.parent_path() / "outside.exr", c / "frames/0001.exr");
+       },
+       "capture.json", 1, "gbuffer", "outside the capture folder"});
+  // Passes every check of loadCapture (structure intact) and fails only when frame 1's pixels are
+  // decoded, after frame 0 was replayed and its images staged: the staging must not survive.
+  add({"corrupt_pixel_data_found_mid_replay",
+       [](const fs::path& c) {
+         fs::path exr = c / "frames/0001.exr";
+         writeDepthExr(exr, kW, kH, ExrPixelType::Float);  // constant channels: the chunk is compressed
+         std::string bytes = readText(exr);
+         std::fill(bytes.end() - 24, bytes.end(), '\x5a');
+         writeText(exr, bytes);
+       },
+       "frames/0001.exr", 1, "", "cannot read pixel data"});
+  return cases;
+}
+
+struct Workspace {
+  fs::path capture, out;
+};
+
+Workspace workspace(const std::string& name) {
+  fs::path dir = scratchDir("bad-input-cli-" + name);
+  fs::create_directories(dir / "out");
+  return {validCapture(dir / "capture"), dir / "out" / "result"};
+}
+
+std::vector<std::string> nonEmptyLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+TEST(BadInputCli, ControlTheUnbrokenCaptureReplays) {
+  Workspace w = workspace("control");
+  auto run = runAoreplay(fmt::format("run '{}' --out '{}'", w.capture.string(), w.out.string()));
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(w.out / "report.json"));
+  EXPECT_TRUE(fs::exists(w.out / "ao/0001.exr"));
+}
+
+class BadInputCli : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInputCli, ExitCode2OneMessageNamingFileFrameFieldAndNothingUnderOut) {
+  const BadCase& c = GetParam();
+  Workspace w = workspace(c.name);
+  c.breakIt(w.capture);
+  auto run = runAoreplay(fmt::format("run '{}' --out '{}'", w.capture.string(), w.out.string()));
+  EXPECT_EQ(run.exitCode, 2) << run.output;
+  auto lines = nonEmptyLines(run.output);
+  ASSERT_EQ(lines.size(), 1u) << run.output;
+  const std::string& message = lines[0];
+  EXPECT_EQ(message.rfind("aoreplay: error: ", 0), 0u) << message;
+  // The file: its path inside the capture folder, after the folder (spelt as given, or relative to
+  // the working directory for files opened during the replay).
+  EXPECT_NE(message.find("/capture/" + c.file + ": "), std::string::npos) << message;
+  if (c.frame >= 0)
+    EXPECT_NE(message.find(fmt::format(": frame {}: ", c.frame)), std::string::npos) << message;
+  else
+    EXPECT_EQ(message.find(": frame "), std::string::npos) << message;
+  if (!c.field.empty()) EXPECT_NE(message.find(fmt::format("\"{}\": ", c.field)), std::string::npos) << message;
+  EXPECT_NE(message.find(c.problem), std::string::npos) << message;
+  // Nothing under --out: not the result, not a staging folder beside it.
+  EXPECT_FALSE(fs::exists(w.out)) << w.out;
+  EXPECT_TRUE(fs::is_empty(w.out.parent_path())) << "left behind in " << w.out.parent_path();
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, BadInputCli, ::testing::ValuesIn(badCases()),
+                         [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace aor::test
