@@ -10,6 +10,7 @@ packages=(
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
   graphviz
+  clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/
 )
 missing=()
 for p in "${packages[@]}"; do
