@@ -13,6 +13,7 @@ void registerRunCommand(CLI::App& app);
 void registerCaptureCommand(CLI::App& app);
 void registerGraphCommand(CLI::App& app);
 void registerDevicesCommand(CLI::App& app);
+void registerCompareCommand(CLI::App& app);
 void registerSweepCommand(CLI::App& app);
 int runSelected(CLI::App& app);
 

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   aor::cli::registerCaptureCommand(app);
   aor::cli::registerGraphCommand(app);
   aor::cli::registerDevicesCommand(app);
+  aor::cli::registerCompareCommand(app);
   aor::cli::registerSweepCommand(app);
   try {
     app.parse(argc, argv);
