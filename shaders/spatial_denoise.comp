@@ -1,6 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
 #include "spatial_denoise.h"
 
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
@@ -10,49 +11,91 @@ layout(set = 0, binding = 0) uniform sampler2D aoIn;          // R16F or RGBA16F
 layout(set = 0, binding = 1) uniform sampler2D viewDistance;
 layout(set = 0, binding = 2) uniform writeonly image2D aoOut;
 
-float distanceAt(ivec2 p) {
-  return texelFetch(viewDistance, clamp(p, ivec2(0), pc.size - 1), 0).r;
+// The 5x5 blur, separated. A tap's weight is gx(dx) * gy(dy) * rowPath(dx) * columnPath(dx, dy):
+// the Gaussian is separable, and the vertical leg of the path starts on the centre row at the tap's
+// column, so it depends on that column pixel alone, not on the centre. Step 1 sums each column
+// pixel's vertical leg once (5 taps), step 2 combines five of those per pixel along the row:
+// 10 taps per pixel instead of 25, same weights (up to float rounding).
+const int kGroup = int(kWorkgroupSize);
+const int kTile = kGroup + 2 * kSpatialRadius;  // the workgroup plus its apron
+const float kGaussian1D[kSpatialRadius + 1] = float[](1.0, exp(-1.0 / (2.0 * kSpatialSigma * kSpatialSigma)),
+                                                      exp(-4.0 / (2.0 * kSpatialSigma * kSpatialSigma)));
+
+// Inputs loaded once per workgroup; distances clamped to the edge like a per-pixel fetch would be.
+// AO outside the image is never used: such taps weigh 0.
+shared float tileDistance[kTile][kTile];
+shared vec4 tileAo[kTile][kTile];
+// Step 1 per (workgroup row, tile column): sum of gy * columnPath * ao, and of gy * columnPath.
+shared vec4 columnSum[kGroup][kTile];
+shared float columnWeight[kGroup][kTile];
+
+void loadTile(ivec2 origin) {
+  for (int i = int(gl_LocalInvocationIndex); i < kTile * kTile; i += kGroup * kGroup) {
+    ivec2 t = ivec2(i % kTile, i / kTile);
+    ivec2 p = clamp(origin + t, ivec2(0), pc.size - 1);
+    tileDistance[t.y][t.x] = texelFetch(viewDistance, p, 0).r;
+    tileAo[t.y][t.x] = texelFetch(aoIn, p, 0);
+  }
+}
+
+// Vertical leg at tile column x, centre row y (tile coordinates), image row imageY.
+void sumColumn(int x, int y, int imageY) {
+  vec4 sum = vec4(0.0);
+  float weightSum = 0.0;
+  [[unroll]] for (int direction = -1; direction <= 1; direction += 2) {
+    float path = 1.0;
+    float previous = tileDistance[y][x];
+    [[unroll]] for (int k = (direction < 0 ? 0 : 1); k <= kSpatialRadius; ++k) {
+      int ty = y + direction * k;
+      if (k > 0) {
+        float current = tileDistance[ty][x];
+        path *= depthEdgeWeight(previous, current);
+        previous = current;
+      }
+      int tapY = imageY + direction * k;
+      float weight = (tapY >= 0 && tapY < pc.size.y) ? kGaussian1D[k] * path : 0.0;
+      sum += weight * tileAo[ty][x];
+      weightSum += weight;
+    }
+  }
+  columnSum[y - kSpatialRadius][x] = sum;
+  columnWeight[y - kSpatialRadius][x] = weightSum;
 }
 
 void main() {
+  ivec2 origin = ivec2(gl_WorkGroupID.xy) * kGroup - kSpatialRadius;
+  loadTile(origin);
+  barrier();
+  for (int i = int(gl_LocalInvocationIndex); i < kGroup * kTile; i += kGroup * kGroup) {
+    int row = i / kTile;
+    sumColumn(i % kTile, row + kSpatialRadius, origin.y + row + kSpatialRadius);
+  }
+  barrier();
+
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
-  vec4 centreValue = texelFetch(aoIn, pixel, 0);
-  if (distanceAt(pixel) <= 0.0) {  // sky: nothing to blur
+  ivec2 c = pixel - origin;  // centre in the tile
+  vec4 centreValue = tileAo[c.y][c.x];
+  if (tileDistance[c.y][c.x] <= 0.0) {  // sky: nothing to blur
     imageStore(aoOut, pixel, centreValue);
     return;
   }
-  // Path weights along the centre row (horizontal leg), accumulated outward from the centre.
-  float rowDistance[2 * kSpatialRadius + 1];
-  for (int dx = -kSpatialRadius; dx <= kSpatialRadius; ++dx) rowDistance[dx + kSpatialRadius] = distanceAt(pixel + ivec2(dx, 0));
-  float rowPath[2 * kSpatialRadius + 1];
-  rowPath[kSpatialRadius] = 1.0;
-  for (int k = 1; k <= kSpatialRadius; ++k) {
-    rowPath[kSpatialRadius + k] = rowPath[kSpatialRadius + k - 1] * depthEdgeWeight(rowDistance[kSpatialRadius + k - 1], rowDistance[kSpatialRadius + k]);
-    rowPath[kSpatialRadius - k] = rowPath[kSpatialRadius - k + 1] * depthEdgeWeight(rowDistance[kSpatialRadius - k + 1], rowDistance[kSpatialRadius - k]);
-  }
-
-  vec4 sum = vec4(0.0);
-  float weightSum = 0.0;
-  for (int dx = -kSpatialRadius; dx <= kSpatialRadius; ++dx) {
-    // Vertical leg at the target column, in both directions from the centre row.
-    for (int direction = -1; direction <= 1; direction += 2) {
-      float path = rowPath[dx + kSpatialRadius];
-      float previous = rowDistance[dx + kSpatialRadius];
-      for (int k = (direction < 0 ? 0 : 1); k <= kSpatialRadius; ++k) {
-        ivec2 tap = pixel + ivec2(dx, direction * k);
-        if (k > 0) {
-          float current = distanceAt(tap);
-          path *= depthEdgeWeight(previous, current);
-          previous = current;
-        }
-        bool inside = tap.x >= 0 && tap.y >= 0 && tap.x < pc.size.x && tap.y < pc.size.y;
-        float weight = inside ? spatialGaussian(dx, direction * k) * path : 0.0;
-        if (weight > 0.0) {
-          sum += weight * texelFetch(aoIn, tap, 0);
-          weightSum += weight;
-        }
-      }
+  int row = c.y - kSpatialRadius;
+  vec4 sum = columnSum[row][c.x];
+  float weightSum = columnWeight[row][c.x];
+  // Horizontal leg along the centre row, outward in both directions.
+  [[unroll]] for (int direction = -1; direction <= 1; direction += 2) {
+    float path = 1.0;
+    float previous = tileDistance[c.y][c.x];
+    [[unroll]] for (int k = 1; k <= kSpatialRadius; ++k) {
+      int tx = c.x + direction * k;
+      float current = tileDistance[c.y][tx];
+      path *= depthEdgeWeight(previous, current);
+      previous = current;
+      int tapX = pixel.x + direction * k;
+      float weight = (tapX >= 0 && tapX < pc.size.x) ? kGaussian1D[k] * path : 0.0;
+      sum += weight * columnSum[row][tx];
+      weightSum += weight * columnWeight[row][tx];
     }
   }
   vec4 result = sum / weightSum;  // weightSum >= 1: the centre tap always counts
