@@ -121,8 +121,10 @@ TEST(GroundTruth, FlatPlaneIsOpenEverywhereDownToGrazingAngles) {
 
 TEST(GroundTruth, SweepErrorFallsAsCostRises) {
   fs::path out = scratchDir("sweep") / "result";
-  fs::path capture = fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit";
-  auto run = runAoreplay(fmt::format("sweep {} --frames 0:6 --repeat 1 --warmup 0 --out {}", capture.string(), out.string()));
+  // The sphere's error is mostly sampling's; on boxes-orbit the screen-space approximation
+  // dominates and high and ultra are within 1e-4 of each other.
+  fs::path capture = fs::path(AOR_SOURCE_DIR) / "captures" / "sphere-orbit";
+  auto run = runAoreplay(fmt::format("sweep {} --repeat 1 --warmup 0 --out {}", capture.string(), out.string()));
   ASSERT_EQ(run.exitCode, 0) << run.output;
   fmt::print("{}", run.output);
   std::ifstream in(out / "sweep.json");
@@ -134,7 +136,7 @@ TEST(GroundTruth, SweepErrorFallsAsCostRises) {
   for (size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i]["configuration"], names[i]);
     EXPECT_GT(rows[i]["gpu_ms_total"].get<double>(), 0.0);
-    EXPECT_EQ(rows[i]["error"]["frames"].get<int>(), 6);
+    EXPECT_EQ(rows[i]["error"]["frames"].get<int>(), 6);  // every frame of the capture
     if (i > 0) {
       // Presets add samples in this order (1x2, 2x2, 3x3, 9x3): each one must be more accurate.
       EXPECT_LT(rows[i]["rmse"].get<double>(), rows[i - 1]["rmse"].get<double>()) << names[i];
