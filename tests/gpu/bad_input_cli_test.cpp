@@ -195,11 +195,14 @@ TEST_P(BadInputCli, ExitCode2OneMessageNamingFileFrameFieldAndNothingUnderOut) {
   // The file: its path inside the capture folder, after the folder (spelt as given, or relative to
   // the working directory for files opened during the replay).
   EXPECT_NE(message.find("/capture/" + c.file + ": "), std::string::npos) << message;
-  if (c.frame >= 0)
+  if (c.frame >= 0) {
     EXPECT_NE(message.find(fmt::format(": frame {}: ", c.frame)), std::string::npos) << message;
-  else
+  } else {
     EXPECT_EQ(message.find(": frame "), std::string::npos) << message;
-  if (!c.field.empty()) EXPECT_NE(message.find(fmt::format("\"{}\": ", c.field)), std::string::npos) << message;
+  }
+  if (!c.field.empty()) {
+    EXPECT_NE(message.find(fmt::format("\"{}\": ", c.field)), std::string::npos) << message;
+  }
   EXPECT_NE(message.find(c.problem), std::string::npos) << message;
   // Nothing under --out: not the result, not a staging folder beside it.
   EXPECT_FALSE(fs::exists(w.out)) << w.out;

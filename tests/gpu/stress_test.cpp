@@ -174,7 +174,9 @@ void expectFiniteBoundedDeterministic(const fs::path& capture, const std::string
     EXPECT_TRUE(bitIdentical(first.frames[k].visibility, second.frames[k].visibility)) << name << " frame " << k;
     EXPECT_TRUE(bitIdentical(first.frames[k].bent, second.frames[k].bent)) << name << " frame " << k;
   }
-  if (first.frames.size() > 1) EXPECT_TRUE(first.result.frames[1].historyValid) << name;  // history really blended
+  if (first.frames.size() > 1) {
+    EXPECT_TRUE(first.result.frames[1].historyValid) << name;  // history really blended
+  }
 }
 
 struct DeviationRow {
