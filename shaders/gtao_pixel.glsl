@@ -80,8 +80,8 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
     float cosN = facesViewer ? clamp(normalAlong / projectedLength, 0.0f, 1.0f) : 0.0f;
     float n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
     float sinN = facesViewer ? clamp(normalAcross / projectedLength, -1.0f, 1.0f) : signN;
-    float lowCosPos = cos(n + kHalfPi);
-    float lowCosNeg = cos(n - kHalfPi);
+    float lowCosPos = -sinN;  // cos(n + pi/2)
+    float lowCosNeg = sinN;   // cos(n - pi/2)
     float horizonCosPos = lowCosPos;
     float horizonCosNeg = lowCosNeg;
 
@@ -96,11 +96,14 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
     // Horizons as angles from the view vector, limited to the hemisphere around the normal.
     float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
     float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
-    visibility += projectedLength * gtaoSliceVisibility(hPos, -hNeg, n);
+    float cosPos = cos(hPos), sinPos = sin(hPos), cosNeg = cos(hNeg), sinNeg = sin(hNeg);
+    visibility += projectedLength * (gtaoHorizonVisibility(hPos, cosPos, sinPos, cosN, sinN) +
+                                     gtaoHorizonVisibility(hNeg, cosNeg, sinNeg, cosN, sinN));
     unoccluded += projectedLength * gtaoUnoccludedSlice(n, cosN, sinN);
 
     if (kBent) {
-      vec2 b = gtaoSliceBentNormal(hNeg, hPos, n);
+      vec2 terms = gtaoHorizonBentTerms(cosNeg, sinNeg, cosN, sinN) + gtaoHorizonBentTerms(cosPos, sinPos, cosN, sinN);
+      vec2 b = vec2((terms.x + 16.0f * sinN) / 12.0f, (terms.y + 8.0f * cosN) / 12.0f);
       vec3 sliceBent = vec3(direction.x * b.x, direction.y * b.x, b.y);
       bentSum += rotateZTo(viewDir, sliceBent) * projectedLength;
     }
@@ -110,7 +113,7 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
   // unoccluded slice integrates to projLen * (cos n + n sin n), not 1, so dividing by the count
   // makes tilted planes scatter around 1 (0.92 at 30 degrees with 9 slices); the ratio is exact.
   visibility = unoccluded > 0.0f ? clamp(visibility / unoccluded, 0.0f, 1.0f) : 1.0f;
-  visibility = pow(visibility, pc.power);
+  if (pc.power != 1.0f) visibility = pow(visibility, pc.power);  // pow(x, 1) is exp2(log2(x)) on some devices
   if (kBent) {
     float bentLength = length(bentSum);
     bentNormal = bentLength > 1e-6f ? bentSum / bentLength : normal;

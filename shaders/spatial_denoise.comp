@@ -8,7 +8,7 @@ layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kSpatialSpecBent) const bool kBent = true;
 layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
 layout(set = 0, binding = 0) uniform sampler2D aoIn;          // R16F or RGBA16F (bent.xyz, visibility)
-layout(set = 0, binding = 1) uniform sampler2D viewDistance;
+layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;  // storage read: cheaper than a sampler on lavapipe
 layout(set = 0, binding = 2) uniform writeonly image2D aoOut;
 
 // The 5x5 blur, separated. A tap's weight is gx(dx) * gy(dy) * rowPath(dx) * columnPath(dx, dy):
@@ -33,7 +33,7 @@ void loadTile(ivec2 origin) {
   for (int i = int(gl_LocalInvocationIndex); i < kTile * kTile; i += kGroup * kGroup) {
     ivec2 t = ivec2(i % kTile, i / kTile);
     ivec2 p = clamp(origin + t, ivec2(0), pc.size - 1);
-    tileDistance[t.y][t.x] = texelFetch(viewDistance, p, 0).r;
+    tileDistance[t.y][t.x] = imageLoad(viewDistance, p).r;
     tileAo[t.y][t.x] = texelFetch(aoIn, p, 0);
   }
 }

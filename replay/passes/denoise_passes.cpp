@@ -16,11 +16,11 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
       "spatial",
       [&](graph::PassBuilder& b) {
         b.read(ao);
-        b.read(distance);
+        b.read(distance, graph::Access::StorageRead);
         b.write(blurred);
       },
       [&pipelines, bent, constants, ao, distance, blurred](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.spatial(bent), {{ao}, {distance}, {blurred, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+        dispatchCompute(ctx, pipelines.spatial(bent), {{ao}, {distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {blurred, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return blurred;

@@ -33,12 +33,12 @@ graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipeline
   graph.addPass(
       "gtao",
       [&](graph::PassBuilder& b) {
-        b.read(inputs.distance);
+        b.read(inputs.distance, graph::Access::StorageRead);
         b.read(inputs.normals);
         b.write(ao);
       },
       [&pipelines, slices = settings.slices, steps = settings.steps, bent, constants, inputs, ao](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals), {{inputs.distance}, {inputs.normals}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals), {{inputs.distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {inputs.normals}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return ao;

@@ -43,7 +43,7 @@ const ComputePipeline& PassPipelines::reconstructNormals() {
 const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals));
   if (fresh) {
-    VkDescriptorType bindings[] = {kSampled, kSampled, kStorage};
+    VkDescriptorType bindings[] = {kStorage, kSampled, kStorage};  // distance read as a storage image
     SpecializationValue spec[] = {{uint32_t(shader::kGtaoSpecSlices), uint32_t(slices)},
                                   {uint32_t(shader::kGtaoSpecSteps), uint32_t(steps)},
                                   {uint32_t(shader::kGtaoSpecBent), bent ? 1u : 0u},
@@ -68,7 +68,7 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
 const ComputePipeline& PassPipelines::spatial(bool bent) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("spatial:{}", bent));
   if (fresh) {
-    VkDescriptorType bindings[] = {kSampled, kSampled, kStorage};
+    VkDescriptorType bindings[] = {kSampled, kStorage, kStorage};  // distance read as a storage image
     SpecializationValue spec[] = {{uint32_t(shader::kSpatialSpecBent), bent ? 1u : 0u}};
     it->second = createComputePipeline(vk_, spirv::spatial_denoise_code(), bindings, sizeof(shader::SpatialConstants), spec);
   }
