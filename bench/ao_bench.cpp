@@ -1,0 +1,225 @@
+// ao_bench: GPU time of each pass and of the whole AO pipeline, per preset and resolution, from
+// Vulkan timestamp queries, reported to Google Benchmark as manual time (so its JSON is what
+// Debian's compare.py and `aoreplay compare` read).
+//
+// Each configuration replays frames 0:2 of the capture once (warm-ups first, lavapipe compiles
+// shaders on first use) with `--reps` timed executions per frame; the second frame has valid
+// history, so the temporal pass runs. Its timed executions are the samples: benchmark repetition i
+// reports execution i. The GPU work is real and measured per execution; only the bookkeeping is
+// batched, so setting up Vulkan pipelines is not paid once per sample.
+//
+// Own flags (before Google Benchmark's): --sizes=320x180,640x360,1920x1080  --presets=low,medium,high,ultra
+// --reps=N (default 10)  --warmup=N (default 2)  --device=SEL  --capture=DIR  --cache=DIR
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "bench_capture.h"
+#include "bench_scaling.h"
+#include "pipeline/replayer.h"
+#include "report/compare_stats.h"
+#include "vk/context.h"
+
+namespace aor::bench {
+namespace {
+
+struct Options {
+  std::vector<std::pair<int, int>> sizes{{320, 180}, {640, 360}, {1920, 1080}};
+  std::vector<std::string> presets{"low", "medium", "high", "ultra"};
+  int reps = 10;
+  int warmup = 2;
+  std::string device;
+  std::string capture = AOR_SOURCE_DIR "/captures/boxes-orbit";
+  std::string cache = "bench-captures";
+};
+
+struct Config {
+  int width = 0, height = 0;
+  AoSettings settings;
+  std::string label() const {
+    return fmt::format("s{}x{}{}/{}x{}", settings.slices, settings.steps, settings.bent ? "" : "/bent:0", width, height);
+  }
+  auto key() const { return std::tuple(width, height, settings.slices, settings.steps, settings.bent); }
+};
+
+// The passes the pipeline total adds up: every compute pass. Upload and readback are copies of the
+// harness, not the algorithm, and are reported on their own.
+bool isComputePass(const std::string& name) { return name != "upload" && name != "readback"; }
+
+struct Measured {
+  std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution
+  std::vector<double> pipelineMs;                      // sum of the compute passes, per execution
+};
+
+class Harness {
+ public:
+  explicit Harness(Options o) : options_(std::move(o)) { createContext(vk_, {options_.device, false}); }
+  ~Harness() { destroyContext(vk_); }
+  const Options& options() const { return options_; }
+  const DeviceInfo& device() const { return vk_.info; }
+
+  const Measured* alreadyMeasured(const Config& config) const {
+    auto found = measured_.find(config.key());
+    return found == measured_.end() ? nullptr : &found->second;
+  }
+
+  const Measured& measure(const Config& config) {
+    auto found = measured_.find(config.key());
+    if (found != measured_.end()) return found->second;
+    Capture capture = resampledCapture(options_.capture, config.width, config.height, 2, options_.cache);
+    ReplayOptions replay;
+    replay.settings = settingsForCapture(capture, config.settings, false);
+    replay.frameBegin = 0;
+    replay.frameEnd = 2;
+    replay.repeat = options_.reps;
+    replay.warmup = options_.warmup;
+    auto result = replayCapture(vk_, capture, replay, nullptr);
+    Measured m;
+    const auto& frame = result.frames.back();
+    m.pipelineMs.assign(size_t(options_.reps), 0.0);
+    for (const auto& pass : frame.passes) {
+      m.passMs[pass.name] = pass.durationsMs;
+      if (isComputePass(pass.name))
+        for (size_t i = 0; i < pass.durationsMs.size(); ++i) m.pipelineMs[i] += pass.durationsMs[i];
+    }
+    return measured_.emplace(config.key(), std::move(m)).first->second;
+  }
+
+ private:
+  Options options_;
+  VulkanContext vk_;
+  std::map<decltype(Config{}.key()), Measured> measured_;
+};
+
+Harness* harness = nullptr;
+
+// One benchmark = one series of samples; repetition i reports sample i as manual time.
+void registerSeries(const std::string& name, Config config, std::string pass) {
+  auto next = std::make_shared<size_t>(0);
+  benchmark::RegisterBenchmark(name.c_str(), [config, pass, next](benchmark::State& state) {
+    const auto& m = harness->measure(config);
+    const auto& samples = pass == "pipeline" ? m.pipelineMs : m.passMs.at(pass);
+    for (auto _ : state) state.SetIterationTime(samples.at(*next % samples.size()) / 1000.0);
+    ++*next;
+    state.counters["pixels"] = double(config.width) * double(config.height);
+    state.counters["slice_steps"] = double(config.settings.slices * config.settings.steps);
+  })
+      ->UseManualTime()
+      ->Iterations(1)
+      ->Repetitions(harness->options().reps)
+      ->Unit(benchmark::kMillisecond);
+}
+
+void registerConfig(const Config& config, bool perPass) {
+  registerSeries("pipeline/" + config.label(), config, "pipeline");
+  if (!perPass) return;
+  for (const char* pass : {"linearize_depth", "gtao", "spatial", "temporal", "upload", "readback"})
+    registerSeries(std::string(pass) + "/" + config.label(), config, pass);
+}
+
+Config makeConfig(int w, int h, const std::string& preset, int bent) {
+  Config c{w, h, {}};
+  applyPreset(c.settings, preset);
+  c.settings.bent = bent;
+  return c;
+}
+
+// Slices x steps beyond the presets, at one size, for the scaling fit.
+const std::vector<std::pair<int, int>> kScalingSliceSteps{{1, 2}, {2, 2}, {2, 4}, {3, 3}, {4, 4}, {9, 3}, {6, 6}};
+
+void registerAll() {
+  const auto& o = harness->options();
+  for (auto [w, h] : o.sizes) {
+    for (const auto& preset : o.presets) registerConfig(makeConfig(w, h, preset, 1), true);
+    registerConfig(makeConfig(w, h, "high", 0), false);  // bent=0 vs bent=1
+  }
+  auto [w, h] = o.sizes.size() > 1 ? o.sizes[1] : o.sizes[0];
+  for (auto [slices, steps] : kScalingSliceSteps) {
+    Config c = makeConfig(w, h, "high", 1);
+    c.settings.slices = slices;
+    c.settings.steps = steps;
+    registerSeries("gtao/" + c.label(), c, "gtao");
+  }
+}
+
+ScalingInput scalingInput() {
+  const auto& o = harness->options();
+  ScalingInput in;
+  // Only what the benchmark filter let run.
+  for (auto [w, h] : o.sizes)
+    if (const auto* m = harness->alreadyMeasured(makeConfig(w, h, "high", 1)))
+      in.byPixels.push_back({double(w) * h, medianOf(m->pipelineMs)});
+  auto [w, h] = o.sizes.size() > 1 ? o.sizes[1] : o.sizes[0];
+  for (auto [slices, steps] : kScalingSliceSteps) {
+    Config c = makeConfig(w, h, "high", 1);
+    c.settings.slices = slices;
+    c.settings.steps = steps;
+    if (const auto* m = harness->alreadyMeasured(c)) in.bySliceSteps.push_back({double(slices * steps), medianOf(m->passMs.at("gtao"))});
+  }
+  in.sliceStepsSize = fmt::format("{}x{}", w, h);
+  return in;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  return out;
+}
+
+// Takes the flags this program owns out of argv, leaving Google Benchmark's.
+Options parseOwnFlags(int& argc, char** argv) {
+  Options o;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    auto value = [&](const char* flag) -> std::optional<std::string> {
+      std::string prefix = std::string(flag) + "=";
+      if (arg.rfind(prefix, 0) == 0) return arg.substr(prefix.size());
+      return std::nullopt;
+    };
+    if (auto v = value("--sizes")) {
+      o.sizes.clear();
+      for (const auto& s : splitList(*v)) {
+        int w = 0, h = 0;
+        if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw std::invalid_argument("bad size " + s);
+        o.sizes.push_back({w, h});
+      }
+    } else if (auto p = value("--presets")) o.presets = splitList(*p);
+    else if (auto r = value("--reps")) o.reps = std::stoi(*r);
+    else if (auto wu = value("--warmup")) o.warmup = std::stoi(*wu);
+    else if (auto d = value("--device")) o.device = *d;
+    else if (auto c = value("--capture")) o.capture = *c;
+    else if (auto c2 = value("--cache")) o.cache = *c2;
+    else argv[kept++] = argv[i];
+  }
+  argc = kept;
+  if (o.reps < 5) throw std::invalid_argument("--reps must be at least 5 (the comparison needs samples)");
+  return o;
+}
+
+}  // namespace
+}  // namespace aor::bench
+
+int main(int argc, char** argv) {
+  using namespace aor::bench;
+  try {
+    Harness h(parseOwnFlags(argc, argv));
+    harness = &h;
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+    benchmark::AddCustomContext("vulkan_device", h.device().name);
+    benchmark::AddCustomContext("vulkan_driver", h.device().driver);
+    registerAll();
+    benchmark::RunSpecifiedBenchmarks();
+    printScaling(stderr, scalingInput());
+    benchmark::Shutdown();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "ao_bench: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# False-alarm and detection figures of `aoreplay compare` from real runs on one device.
+# For each of PAIRS rounds it runs the same build three times, interleaved: A and B with the same
+# settings, S with one extra GTAO slice (a real slowdown). compare A B should say `same` (no exit 1);
+# compare A S should say `slower` (exit 1).
+#   bash bench/compare_runs.sh BUILD_DIR OUT_DIR [PAIRS=20] [extra `aoreplay run` args...]
+set -euo pipefail
+build=${1:?build dir}
+out=${2:?output dir}
+pairs=${3:-20}
+shift $(( $# < 3 ? $# : 3 ))
+aoreplay="$build/replay/aoreplay"
+capture="$(dirname "$0")/../captures/boxes-orbit"
+run_args=(--frames 0:4 --repeat 10 --warmup 2 --no-images "$@")
+mkdir -p "$out"
+
+replay() {  # name, extra settings...
+  local name=$1; shift
+  "$aoreplay" run "$capture" "${run_args[@]}" "$@" --out "$out/$name" >/dev/null
+}
+
+false_alarms=0 all_same=0 detected=0
+for i in $(seq 1 "$pairs"); do
+  replay "a$i"
+  replay "b$i"
+  replay "s$i" --set slices=4
+  set +e
+  "$aoreplay" compare "$out/a$i/report.json" "$out/b$i/report.json" --json "$out/same$i.json" >"$out/same$i.txt"
+  same_rc=$?
+  "$aoreplay" compare "$out/a$i/report.json" "$out/s$i/report.json" --json "$out/slow$i.json" >"$out/slow$i.txt"
+  slow_rc=$?
+  set -e
+  [ "$same_rc" -eq 1 ] && false_alarms=$((false_alarms + 1))
+  [ "$slow_rc" -eq 1 ] && detected=$((detected + 1))
+  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); sys.exit(any(p['verdict']!='same' for p in d['passes']))" \
+    "$out/same$i.json" && all_same=$((all_same + 1))
+  total_same=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(next(p['verdict'] for p in d['passes'] if p['name']=='total'))" "$out/same$i.json")
+  total_slow=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); p=next(p for p in d['passes'] if p['name']=='total'); print(p['verdict'], '%+.1f%%' % (100*p['change']))" "$out/slow$i.json")
+  echo "pair $i: A vs B exit $same_rc (total: $total_same); A vs slices=4 exit $slow_rc (total: $total_slow)"
+done
+echo "same build, separate runs: every pass 'same' in $all_same/$pairs; exit 1 (slowdown claimed) in $false_alarms/$pairs"
+echo "one extra slice: $detected/$pairs called slower"

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Side-by-side table: ao_bench medians (Google Benchmark JSON) next to the naive baseline's output.
+
+usage: summarize.py ao_bench.json baseline.txt
+"""
+import json
+import re
+import statistics
+import sys
+
+
+def bench_medians(path):
+    """name -> median of the repetitions' manual (GPU timestamp) time in ms."""
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
+    samples = {}
+    for b in json.load(open(path))["benchmarks"]:
+        if b.get("run_type") == "iteration":
+            samples.setdefault(b["run_name"], []).append(b["real_time"] * scale[b["time_unit"]])
+    return {name: statistics.median(v) for name, v in samples.items()}
+
+
+def baseline_medians(path):
+    """(size, 'SxT') -> gpu_med_ms from the baseline's table."""
+    rows = {}
+    for line in open(path):
+        m = re.match(r"^(\d+x\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s", line)
+        if m:
+            rows[(m.group(1), f"{m.group(2)}x{m.group(3)}")] = float(m.group(4))
+    return rows
+
+
+def main():
+    bench, baseline = bench_medians(sys.argv[1]), baseline_medians(sys.argv[2])
+    sizes = sorted({size for size, _ in baseline}, key=lambda s: int(s.split("x")[0]))
+    print("| size | preset | naive baseline 1 pass | pipeline (bent=1) | pipeline (bent=0) | linearize | gtao | spatial | temporal | pipeline / baseline |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for size in sizes:
+        for preset, st in (("low", "1x2"), ("medium", "2x2"), ("high", "3x3"), ("ultra", "9x3")):
+            key = f"s{st}/{size}"
+            pipe = bench.get(f"pipeline/{key}")
+            base = baseline.get((size, st))
+            if pipe is None or base is None:
+                continue
+            cells = [bench.get(f"{p}/{key}") for p in ("linearize_depth", "gtao", "spatial", "temporal")]
+            bent0 = bench.get(f"pipeline/s{st}/bent:0/{size}")
+            fmt = lambda v: "-" if v is None else f"{v:.3f}"
+            print(f"| {size} | {preset} | {base:.3f} | {pipe:.3f} | {fmt(bent0)} | "
+                  + " | ".join(fmt(c) for c in cells) + f" | {pipe / base:.2f} |")
+    print("\nmedian GPU ms (timestamp queries) per repetition; same device, same invocation of run_bench.sh")
+
+
+if __name__ == "__main__":
+    main()
