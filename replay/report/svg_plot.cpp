@@ -11,7 +11,7 @@ namespace {
 
 // Distinct on white and in grayscale print; cycled when there are more series.
 constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf"};
-constexpr double kMarginLeft = 78, kMarginRight = 24, kMarginTop = 44, kMarginBottom = 56;
+constexpr double kMarginLeft = 78, kMarginRight = 24, kMarginTop = 62, kMarginBottom = 56;
 
 std::string escapeXml(const std::string& text) {
   std::string out;
@@ -152,40 +152,40 @@ void drawSeries(std::string& svg, const PlotSeries& s, const char* color, const 
       svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="7" fill="{}" stroke="#000" stroke-width="1.5"/>)" "\n", px, py, color);
     else if (s.markers)
       svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n", px, py, color);
-    if (i < s.labels.size() && !s.labels[i].empty())
-      svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="#222">{}</text>)" "\n", px + 9, py - 7,
-                         escapeXml(s.labels[i]));
+    if (i < s.labels.size() && !s.labels[i].empty()) {
+      // Labels that would run past the plot's right edge go to the left of their point.
+      bool flip = px + 9 + 6.0 * double(s.labels[i].size()) > x.pixelHi;
+      svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="#222"{}>{}</text>)" "\n",
+                         flip ? px - 9 : px + 9, py - 7, flip ? R"( text-anchor="end")" : "", escapeXml(s.labels[i]));
+    }
   }
 }
 
-void drawLegend(std::string& svg, const std::vector<PlotSeries>& series, const Axis& x, const Axis& y) {
+// One row between the title and the plot, so it never hides a point: a swatch and a name per
+// series, then the highlighted-point marker when any point is highlighted.
+void drawLegend(std::string& svg, const std::vector<PlotSeries>& series, const Axis& x) {
+  constexpr double kCharWidth = 7.0, kRowY = 44;
+  double left = x.pixelLo;
+  auto entry = [&](const std::string& swatch, const std::string& name) {
+    svg += swatch;
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 26, kRowY + 4, escapeXml(name));
+    left += 26 + kCharWidth * double(name.size()) + 18;
+  };
+  for (size_t i = 0; i < series.size(); ++i) {
+    const char* color = kPalette[i % std::size(kPalette)];
+    entry(series[i].lines
+              ? fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"/>)" "\n",
+                            left, kRowY, left + 20, kRowY, color)
+              : fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
+                            left + 10, kRowY, color),
+          series[i].name);
+  }
   bool anyHighlight = false;
   for (const auto& s : series) anyHighlight |= std::find(s.highlighted.begin(), s.highlighted.end(), true) != s.highlighted.end();
-  size_t rows = series.size() + (anyHighlight ? 1 : 0);
-  if (rows == 0) return;
-  double width = 12;
-  for (const auto& s : series) width = std::max(width, 7.0 * double(s.name.size()));
-  width = std::max(width, anyHighlight ? 7.0 * 16 : 0.0) + 40;
-  double left = x.pixelHi - width - 8, top = y.pixelHi + 8;
-  svg += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="#fff" fill-opacity="0.9" stroke="#bbb"/>)" "\n",
-                     left, top, width, 20.0 * double(rows) + 6);
-  for (size_t i = 0; i < series.size(); ++i) {
-    double row = top + 16 + 20.0 * double(i);
-    const char* color = kPalette[i % std::size(kPalette)];
-    if (series[i].lines)
-      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"/>)" "\n",
-                         left + 8, row - 4, left + 28, row - 4, color);
-    else
-      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
-                         left + 18, row - 4, color);
-    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 34, row, escapeXml(series[i].name));
-  }
-  if (anyHighlight) {
-    double row = top + 16 + 20.0 * double(series.size());
-    svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
-                       left + 18, row - 4);
-    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">Pareto-optimal</text>)" "\n", left + 34, row);
-  }
+  if (anyHighlight)
+    entry(fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
+                      left + 10, kRowY),
+          "Pareto-optimal");
 }
 
 }  // namespace
@@ -207,7 +207,7 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   drawAxes(svg, x, y, options);
   drawVerticalMarkers(svg, x, y, options.verticalMarkers);
   for (size_t i = 0; i < series.size(); ++i) drawSeries(svg, series[i], kPalette[i % std::size(kPalette)], x, y);
-  drawLegend(svg, series, x, y);
+  drawLegend(svg, series, x);
   svg += "</svg>\n";
   return svg;
 }

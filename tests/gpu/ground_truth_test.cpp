@@ -52,7 +52,7 @@ float at(const std::vector<float>& image, int width, int x, int y) { return imag
 constexpr double kPitA = 1.0, kPitH = 1.0;  // scenes.cpp: pit radius and depth
 
 // Odd size: the centre pixel lies exactly on the pit axis, looking straight down.
-constexpr int kPitSize = 129;
+constexpr int kPitSize = 193;
 
 fs::path pitCapture() {
   gen::FrameCamera camera;
