@@ -21,18 +21,24 @@ namespace fs = std::filesystem;
 
 fs::path shipped(const std::string& name) { return fs::path(AOR_SOURCE_DIR) / "captures" / name; }
 
-// Replays `capture` in-process and feeds every frame to a TemporalAnalysis, as `aoreplay run` does.
-TemporalAnalysis analyze(const fs::path& capturePath, const AoSettings& settings) {
+// Replays `capture` in-process and feeds every frame to a TemporalAnalysis, as `aoreplay run` does;
+// with `againstNoHistory` errors are measured against a temporal=0 replay instead of the reference.
+TemporalAnalysis analyze(const fs::path& capturePath, const AoSettings& settings, bool againstNoHistory = false) {
   Capture capture = loadCapture(capturePath);
   auto replayed = replay(capturePath, settings);
+  AoSettings withoutHistory = settings;
+  withoutHistory.temporal = 0;
+  std::vector<FrameOutput> noHistory;
+  if (againstNoHistory) noHistory = replay(capturePath, withoutHistory).frames;
   TemporalAnalysis analysis;
   for (const auto& frame : replayed.frames) {
     const auto& desc = capture.frames[size_t(frame.index)];
     GBuffer g = loadGBuffer(capture, frame.index);
-    auto reference = loadReference(capture, frame.index);
+    auto reference = againstNoHistory ? std::nullopt : loadReference(capture, frame.index);
     AnalyzedFrame a{frame.index, frame.width, frame.height, frame.visibility.data(), g.depth.data(), desc.view,
                     desc.projection, desc.cut, frame.historyValid, frame.resetReason, reference ? &*reference : nullptr};
     a.historyWeight = settings.temporal;
+    if (againstNoHistory) a.noHistory = noHistory[size_t(frame.index)].visibility.data();
     analysis.addFrame(a);
   }
   return analysis;
@@ -152,6 +158,24 @@ TEST(Temporal, DisocclusionResponseOnTheStrafeStaysWithinTheEmaBound) {
   EXPECT_LE(response, predicted + kMarginFrames);
 }
 
+// Against a no-history replay, every pixel the metric calls disoccluded must be exactly the fresh
+// value on its first frame (the pass rejected its history: the metric's mask and the shader's
+// agree), and the deviation appears at the first blended frame (w of the output is history at once).
+TEST(Temporal, DisoccludedPixelsAreExactlyTheFreshValueOnTheirFirstFrame) {
+  AoSettings settings;
+  settings.temporal = 0.6f;
+  auto analysis = analyze(shipped("boxes-strafe"), settings, /*againstNoHistory=*/true);
+  auto summary = analysis.summaryJson();
+  EXPECT_EQ(summary["error_source"], "no-history replay");
+  auto d = summary["disocclusion"];
+  ASSERT_FALSE(d.is_null());
+  EXPECT_EQ(d["abs_error_by_age"][0].get<double>(), 0.0);
+  int predicted = emaResponseFrames(settings.temporal), response = d["response_frames"].get<int>();
+  std::printf("strafe vs no-history replay, w=0.6: response %d frames (EMA %d), curve %s\n", response, predicted,
+              d["abs_error_by_age"].dump().c_str());
+  EXPECT_LE(response, predicted + 2);  // margin as in the test above
+}
+
 TEST(Temporal, ExpectationsNameTheMetricTheFrameAndBothNumbers) {
   nlohmann::json report = nlohmann::json::parse(R"({
     "frames": [{"index": 3, "gpu_ms_median": {"gtao": 2.5}, "metrics": {"temporal": {"warping_error": 0.004}}},
@@ -194,6 +218,18 @@ TEST(Temporal, ExpectFailsTheRunAfterWritingItsOutputs) {
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("max.temporal.warping_eror"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(typoOut)) << "nothing is left looking valid";
+}
+
+TEST(Temporal, WithoutReferencesTheRunComparesWithANoHistoryReplay) {
+  auto capture = generatedCapture("boxes", "strafe", 64, 36, 5);  // generated without references
+  auto out = scratchDir("temporal-no-reference") / "result";
+  auto r = runAoreplay(fmt::format("run {} --no-images --out {}", capture.string(), out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(out / "report.json");
+  auto report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["metrics"]["temporal"]["error_source"], "no-history replay");
+  EXPECT_EQ(report["frames"][0]["metrics"]["temporal"]["abs_error"].get<double>(), 0.0);  // first frame: no history
+  EXPECT_GT(report["frames"][1]["metrics"]["temporal"]["abs_error"].get<double>(), 0.0);
 }
 
 TEST(Temporal, ReportSaysWhyHistoryWasResetAndDrawsThePlots) {
