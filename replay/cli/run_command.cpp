@@ -162,10 +162,10 @@ void registerRunCommand(CLI::App& app) {
   cmd->add_option("--expect", args->expect,
                   "JSON thresholds {\"max\": {METRIC: limit}, \"min\": {...}}; any violation: exit 1 after writing outputs");
   cmd->add_option("--jump-angle", args->cameraJump.maxRotationDegrees,
-                  "reset history when the camera turns more than this many degrees between frames (default 30, 0 = off)")
+                  "reset history when the camera turns more than this many degrees between frames (default 45, 0 = off)")
       ->check(CLI::Range(0.0, 180.0));
   cmd->add_option("--jump-distance", args->cameraJump.maxMoveFraction,
-                  "reset history when the camera moves more than this fraction of the median view distance (default 0.5, 0 = off)")
+                  "reset history when the camera moves more than this fraction of the median view distance (default 1, 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
                 "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")

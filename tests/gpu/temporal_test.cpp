@@ -1,18 +1,20 @@
 // Temporal stability on the shipped temporal captures (captures/boxes-static, -strafe, -cut):
 // flicker falls as the denoisers are switched on, history never survives an invalidation (marked
-// cut or unmarked camera jump), the disocclusion response stays within what the EMA weight allows,
+// cut or unmarked camera jump beyond the limits), the disocclusion response stays within what the EMA weight allows,
 // and `--expect` fails a run with a readable list.
 #include <filesystem>
 #include <fstream>
 #include <regex>
 
 #include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
 #include "metrics/temporal_metrics.h"
 #include "metrics/temporal_response.h"
+#include "pipeline/camera_jump.h"
 #include "report/expectations.h"
 
 namespace aor::test {
@@ -102,38 +104,55 @@ TEST(Temporal, FrameAfterTheShippedCutEqualsAReplayStartingThere) {
   EXPECT_FALSE(bitIdentical(leaky.frames[size_t(k)].visibility, alone.frames[0].visibility));
 }
 
-TEST(Temporal, AnUnmarkedCameraJumpResetsHistoryToo) {
+// Replays with explicit camera-jump limits; returns the result and frame `keep`'s visibility.
+std::pair<ReplayResult, std::vector<float>> replayWithJumpLimits(const fs::path& path, const AoSettings& settings,
+                                                                  CameraJumpLimits limits, int keep) {
+  ReplayOptions options;
+  options.settings = settings;
+  options.cameraJump = limits;
+  std::vector<float> kept;
+  auto result = replayCapture(validatedContext(), loadCapture(path), options, [&](const FrameOutput& f) {
+    if (f.index == keep) kept = f.visibility;
+  });
+  return {std::move(result), std::move(kept)};
+}
+
+TEST(Temporal, AnUnmarkedCameraJumpBeyondTheLimitResetsHistory) {
   auto path = unmarkedCutCapture();
-  Capture capture = loadCapture(path);
   int k = firstCut(loadCapture(shipped("boxes-cut")));
-  ASSERT_EQ(firstCut(capture), -1);
+  ASSERT_EQ(firstCut(loadCapture(path)), -1);
   AoSettings settings;
-  auto full = replay(path, settings);
-  for (size_t i = 1; i < full.result.frames.size(); ++i) {
-    const auto& f = full.result.frames[i];
+  settings.temporal = 0.98f;  // no rejection layer can hide a leak completely at this weight
+  // The jump turns the camera 22 degrees; the orbits around it turn under 1.5 per frame.
+  auto [caught, afterJump] = replayWithJumpLimits(path, settings, {20.0f, 0.0f}, k);
+  for (size_t i = 1; i < caught.frames.size(); ++i) {
+    const auto& f = caught.frames[i];
     if (int(i) == k) {
-      EXPECT_EQ(f.resetReason.rfind("camera jump: ", 0), 0u) << f.resetReason;
+      EXPECT_EQ(f.resetReason.rfind("camera jump: turned 22.", 0), 0u) << f.resetReason;
     } else {
-      EXPECT_TRUE(f.historyValid) << "frame " << i << ": " << f.resetReason;  // the slow orbits are no jump
+      EXPECT_TRUE(f.historyValid) << "frame " << i << ": " << f.resetReason;
     }
   }
   auto alone = replay(path, settings, k, k + 1);
-  EXPECT_TRUE(bitIdentical(full.frames[size_t(k)].visibility, alone.frames[0].visibility));
+  EXPECT_TRUE(bitIdentical(afterJump, alone.frames[0].visibility));
+  // With the limits off nothing catches it: history leaks into the frame after the jump.
+  auto [missed, leaked] = replayWithJumpLimits(path, settings, {0.0f, 0.0f}, k);
+  EXPECT_TRUE(missed.frames[size_t(k)].historyValid);
+  EXPECT_FALSE(bitIdentical(leaked, alone.frames[0].visibility));
+}
 
-  // With both limits off nothing catches it: history leaks into the frame after the jump.
-  Capture c = loadCapture(path);
-  ReplayOptions options;
-  options.settings = settings;
-  options.settings.temporal = 0.98f;
-  options.cameraJump = {0.0f, 0.0f};
-  std::vector<float> leaked;
-  auto result = replayCapture(validatedContext(), c, options, [&](const FrameOutput& f) {
-    if (f.index == k) leaked = f.visibility;
-  });
-  EXPECT_TRUE(result.frames[size_t(k)].historyValid);
-  AoSettings heavy = settings;
-  heavy.temporal = 0.98f;
-  EXPECT_FALSE(bitIdentical(leaked, replay(path, heavy, k, k + 1).frames[0].visibility));
+TEST(Temporal, DefaultJumpLimitsCatchWhatNoSmoothCameraDoes) {
+  auto look = [](glm::vec3 eye, glm::vec3 at) { return glm::lookAtRH(eye, at, glm::vec3(0, 1, 0)); };
+  glm::mat4 start = look({0, 2, 10}, {0, 0, 0});
+  CameraJumpLimits defaults;
+  // Distances: the previous frame's median view distance is 10.
+  EXPECT_EQ(cameraJumpReason(start, look({0, 2, 10}, {3, 0, 0}), 10.0f, defaults), "");  // a 17-degree pan
+  EXPECT_EQ(cameraJumpReason(start, look({0, 2, 2}, {0, 0, -8}), 10.0f, defaults), "");  // 8 units forward
+  auto turned = cameraJumpReason(start, look({0, 2, 10}, {0, 2, 20}), 10.0f, defaults);  // turned around
+  EXPECT_EQ(turned.rfind("camera jump: turned 1", 0), 0u) << turned;
+  auto moved = cameraJumpReason(start, look({0, 2, -5}, {0, 0, -15}), 10.0f, defaults);  // 15 units
+  EXPECT_EQ(moved, "camera jump: moved 15 (limit 1 x median view distance 10)");
+  EXPECT_EQ(cameraJumpReason(start, look({0, 2, -5}, {0, 0, -15}), 10.0f, {0.0f, 0.0f}), "");
 }
 
 TEST(Temporal, DisocclusionResponseOnTheStrafeStaysWithinTheEmaBound) {
