@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <future>
+#include <memory>
 
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
@@ -19,8 +20,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+// A frame made ready for the GPU on the worker thread: decoded, normals packed to the staging
+// layout, inputs checked, so the main thread only copies while the GPU waits.
 struct DecodedFrame {
   GBuffer gbuffer;
+  std::vector<uint16_t> packedNormals;  // RGBA16F, empty without normals
+  int64_t invalidDepthPixels = 0, invalidNormalPixels = 0;
+  float medianDistance = 0;  // for the camera-jump limit; 0 when there is no temporal pass
   double decodeMs = 0;
 };
 
@@ -41,16 +47,16 @@ struct StagingBuffers {
   }
 };
 
-int64_t stageDepth(const GBuffer& g, GpuBuffer& target) {
-  std::memcpy(target.mapped, g.depth.data(), g.depth.size() * sizeof(float));
+int64_t countInvalidDepth(const GBuffer& g) {
   int64_t invalid = 0;
   for (float d : g.depth) invalid += !(d >= 0.0f && d <= 1.0f);  // NaN fails both comparisons
   return invalid;
 }
 
-int64_t stageNormals(const GBuffer& g, GpuBuffer& target) {
-  auto* out = static_cast<uint16_t*>(target.mapped);
+int64_t packNormals(const GBuffer& g, std::vector<uint16_t>& packed) {
   size_t pixels = g.normals.size() / 3;
+  packed.resize(pixels * 4);
+  uint16_t* out = packed.data();
   int64_t invalid = 0;
   for (size_t i = 0; i < pixels; ++i) {
     bool finite = true;
@@ -65,6 +71,17 @@ int64_t stageNormals(const GBuffer& g, GpuBuffer& target) {
   return invalid;
 }
 
+// Every half-float bit pattern converted once (by the same glm function, so results are identical):
+// the read-back converts 4 halves per pixel, and a table lookup is several times cheaper.
+const std::vector<float>& halfToFloat() {
+  static const std::vector<float> table = [] {
+    std::vector<float> t(65536);
+    for (uint32_t h = 0; h < 65536; ++h) t[h] = glm::unpackHalf1x16(uint16_t(h));
+    return t;
+  }();
+  return table;
+}
+
 FrameOutput readResult(const GpuBuffer& readback, int index, int width, int height, bool bent) {
   FrameOutput out;
   out.index = index;
@@ -72,15 +89,16 @@ FrameOutput readResult(const GpuBuffer& readback, int index, int width, int heig
   out.height = height;
   size_t pixels = size_t(width) * size_t(height);
   const auto* halves = static_cast<const uint16_t*>(readback.mapped);
+  const float* toFloat = halfToFloat().data();
   out.visibility.resize(pixels);
   if (bent) out.bent.resize(pixels * 3);
   for (size_t i = 0; i < pixels; ++i) {
     if (!bent) {
-      out.visibility[i] = glm::unpackHalf1x16(halves[i]);
+      out.visibility[i] = toFloat[halves[i]];
       continue;
     }
-    for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = glm::unpackHalf1x16(halves[4 * i + c]);
-    out.visibility[i] = glm::unpackHalf1x16(halves[4 * i + 3]);
+    for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = toFloat[halves[4 * i + c]];
+    out.visibility[i] = toFloat[halves[4 * i + 3]];
   }
   return out;
 }
@@ -141,14 +159,26 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
   StagingBuffers staging(vk, capture, bent);
   AoFrameBuffers buffers{&staging.depth, capture.hasNormals ? &staging.normals : nullptr, &staging.readback};
 
-  auto decode = [&capture](int index) {
+  auto decode = [&capture, temporalWanted](int index) {
     auto t = Clock::now();
-    DecodedFrame d{loadGBuffer(capture, index), 0};
+    DecodedFrame d;
+    d.gbuffer = loadGBuffer(capture, index);
+    d.invalidDepthPixels = countInvalidDepth(d.gbuffer);
+    if (capture.hasNormals) d.invalidNormalPixels = packNormals(d.gbuffer, d.packedNormals);
+    if (temporalWanted) d.medianDistance = medianViewDistance(d.gbuffer.depth, capture.frames[size_t(index)].projection);
     d.decodeMs = msSince(t);
     return d;
   };
   auto next = std::async(std::launch::async, decode, begin);
   HistoryTracker history;
+  // A frame's sink (image writing, analysis) runs on a worker thread while the next frame is
+  // uploaded and run on the GPU; sinks run one at a time, in frame order. Its time is the frame's
+  // write time.
+  std::future<double> pendingSink;
+  size_t pendingRecord = 0;
+  auto finishPendingSink = [&] {
+    if (pendingSink.valid()) result.frames[pendingRecord].writeMs = pendingSink.get();
+  };
 
   for (int index = begin; index < end; ++index) {
     FrameRecord record;
@@ -159,8 +189,11 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     if (index + 1 < end) next = std::async(std::launch::async, decode, index + 1);
 
     auto t = Clock::now();
-    record.invalidDepthPixels = stageDepth(decoded.gbuffer, staging.depth);
-    if (capture.hasNormals) record.invalidNormalPixels = stageNormals(decoded.gbuffer, staging.normals);
+    std::memcpy(staging.depth.mapped, decoded.gbuffer.depth.data(), decoded.gbuffer.depth.size() * sizeof(float));
+    if (capture.hasNormals)
+      std::memcpy(staging.normals.mapped, decoded.packedNormals.data(), decoded.packedNormals.size() * sizeof(uint16_t));
+    record.invalidDepthPixels = decoded.invalidDepthPixels;
+    record.invalidNormalPixels = decoded.invalidNormalPixels;
     record.uploadMs = msSince(t);
 
     const auto& frame = capture.frames[size_t(index)];
@@ -206,16 +239,24 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     output.historyValid = record.historyValid;
     output.resetReason = record.resetReason;
     record.readbackMs = msSince(t);
-    t = Clock::now();
-    if (sink) sink(output);
-    record.writeMs = msSince(t);
 
     if (temporalWanted) resources.swapHistory();
-    history = {true, capture.width, capture.height, settings, camera,
-               temporalWanted ? medianViewDistance(decoded.gbuffer.depth, frame.projection) : 0.0f};
+    history = {true, capture.width, capture.height, settings, camera, decoded.medianDistance};
+    finishPendingSink();
     result.frames.push_back(std::move(record));
+    if (sink) {
+      auto job = std::make_shared<std::pair<DecodedFrame, FrameOutput>>(std::move(decoded), std::move(output));
+      job->second.gbuffer = &job->first.gbuffer;
+      pendingRecord = result.frames.size() - 1;
+      pendingSink = std::async(std::launch::async, [&sink, job] {
+        auto start = Clock::now();
+        sink(job->second);
+        return msSince(start);
+      });
+    }
     if (options.progress) options.progress(index - begin + 1, end - begin);
   }
+  finishPendingSink();
   result.wallMs = msSince(replayStart);
   return result;
 }
