@@ -9,7 +9,14 @@
 // batched, so setting up Vulkan pipelines is not paid once per sample.
 //
 // Own flags (before Google Benchmark's): --sizes=320x180,640x360,1920x1080  --presets=low,medium,high,ultra
-// --reps=N (default 10)  --warmup=N (default 2)  --device=SEL  --capture=DIR  --cache=DIR
+// --reps=N (default 10)  --warmup=N (default 2)  --warmup-ms=MS (default 300)  --device=SEL  --capture=DIR  --cache=DIR
+//
+// Warm-up is by time as well as by count: a GPU needs some hundred milliseconds of steady work to
+// leave its idle clocks, and a configuration measured in a 5 ms burst is measured at whatever clock
+// the previous one left (seen on the H100: one configuration 40% slower in one of two runs). A
+// probe execution times one frame; warm-ups are repeated until they add up to --warmup-ms.
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -31,6 +38,7 @@ struct Options {
   std::vector<std::string> presets{"low", "medium", "high", "ultra"};
   int reps = 10;
   int warmup = 2;
+  double warmupMs = 300;
   std::string device;
   std::string capture = AOR_SOURCE_DIR "/captures/boxes-orbit";
   std::string cache = "bench-captures";
@@ -61,6 +69,11 @@ class Harness {
   const Options& options() const { return options_; }
   const DeviceInfo& device() const { return vk_.info; }
 
+  int warmupRuns(double executionMs) const {
+    int byTime = int(std::ceil(options_.warmupMs / std::max(executionMs, 0.001)));
+    return std::clamp(byTime, options_.warmup, 5000);
+  }
+
   const Measured* alreadyMeasured(const Config& config) const {
     auto found = measured_.find(config.key());
     return found == measured_.end() ? nullptr : &found->second;
@@ -73,9 +86,11 @@ class Harness {
     ReplayOptions replay;
     replay.settings = settingsForCapture(capture, config.settings, false);
     replay.frameBegin = 0;
+    replay.frameEnd = 1;
+    auto probe = replayCapture(vk_, capture, replay, nullptr);
     replay.frameEnd = 2;
     replay.repeat = options_.reps;
-    replay.warmup = options_.warmup;
+    replay.warmup = warmupRuns(probe.frames.front().gpuWallMs);
     auto result = replayCapture(vk_, capture, replay, nullptr);
     Measured m;
     const auto& frame = result.frames.back();
@@ -191,6 +206,7 @@ Options parseOwnFlags(int& argc, char** argv) {
     } else if (auto p = value("--presets")) o.presets = splitList(*p);
     else if (auto r = value("--reps")) o.reps = std::stoi(*r);
     else if (auto wu = value("--warmup")) o.warmup = std::stoi(*wu);
+    else if (auto wm = value("--warmup-ms")) o.warmupMs = std::stod(*wm);
     else if (auto d = value("--device")) o.device = *d;
     else if (auto c = value("--capture")) o.capture = *c;
     else if (auto c2 = value("--cache")) o.cache = *c2;

@@ -15,7 +15,8 @@ def bench_medians(path):
     samples = {}
     for b in json.load(open(path))["benchmarks"]:
         if b.get("run_type") == "iteration":
-            samples.setdefault(b["run_name"], []).append(b["real_time"] * scale[b["time_unit"]])
+            name = re.sub(r"/iterations:.*", "", b["run_name"])
+            samples.setdefault(name, []).append(b["real_time"] * scale[b["time_unit"]])
     return {name: statistics.median(v) for name, v in samples.items()}
 
 
