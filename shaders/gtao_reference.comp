@@ -49,18 +49,22 @@ float referencePixel(ivec2 pixel, out vec3 bentNormal) {
     float phi = (float(slice) + 0.5) * (kPi / float(kSlices));
     vec2 omega = vec2(cos(phi), sin(phi));
     vec3 direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0));
-    vec3 orthoDirection = direction - dot(direction, viewDir) * viewDir;
+    // Slice frame exactly as gtaoPixel builds it (n from atan: precise for surfaces facing us).
+    vec3 orthoDirection = normalize(direction - dot(direction, viewDir) * viewDir);
     vec3 axis = normalize(cross(direction, viewDir));
     vec3 projectedNormal = normal - axis * dot(normal, axis);
     float projectedLength = length(projectedNormal);
     if (!(projectedLength > 1e-6)) continue;
 
-    float signN = dot(orthoDirection, projectedNormal) >= 0.0 ? 1.0 : -1.0;
-    float cosN = clamp(dot(projectedNormal, viewDir) / projectedLength, 0.0, 1.0);
-    float n = signN * acos(cosN);
-    float sinN = signN * sqrt(1.0 - cosN * cosN);
-    float lowCosPos = cos(n + kHalfPi);
-    float lowCosNeg = cos(n - kHalfPi);
+    float normalAlong = dot(projectedNormal, viewDir);
+    float normalAcross = dot(projectedNormal, orthoDirection);
+    float signN = normalAcross >= 0.0 ? 1.0 : -1.0;
+    bool facesViewer = normalAlong > 0.0;
+    float cosN = facesViewer ? clamp(normalAlong / projectedLength, 0.0, 1.0) : 0.0;
+    float n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
+    float sinN = facesViewer ? clamp(normalAcross / projectedLength, -1.0, 1.0) : signN;
+    float lowCosPos = -sinN;  // cos(n + pi/2)
+    float lowCosNeg = sinN;   // cos(n - pi/2)
     float horizonCosPos = lowCosPos;
     float horizonCosNeg = lowCosNeg;
 
@@ -83,7 +87,7 @@ float referencePixel(ivec2 pixel, out vec3 bentNormal) {
     }
   }
   visibility = unoccluded > 0.0 ? clamp(visibility / unoccluded, 0.0, 1.0) : 1.0;
-  visibility = pow(visibility, pc.power);
+  if (pc.power != 1.0) visibility = pow(visibility, pc.power);
   if (kBent) {
     float bentLength = length(bentSum);
     bentNormal = bentLength > 1e-6 ? bentSum / bentLength : normal;
