@@ -10,6 +10,9 @@
 //
 // Own flags (before Google Benchmark's): --sizes=320x180,640x360,1920x1080  --presets=low,medium,high,ultra
 // --reps=N (default 10)  --warmup=N (default 2)  --warmup-ms=MS (default 300)  --device=SEL  --capture=DIR  --cache=DIR
+// --scaling-size=WxH: where time against slices x steps is measured (default: the second size).
+// --extra-slices=N adds N GTAO slices to every configuration without renaming it: a real slowdown
+// for checking that `aoreplay compare` detects one.
 //
 // Warm-up is by time as well as by count: a GPU needs some hundred milliseconds of steady work to
 // leave its idle clocks, and a configuration measured in a 5 ms burst is measured at whatever clock
@@ -18,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <memory>
 #include <sstream>
 
@@ -39,6 +43,8 @@ struct Options {
   int reps = 10;
   int warmup = 2;
   double warmupMs = 300;
+  int extraSlices = 0;
+  std::optional<std::pair<int, int>> scalingSize;
   std::string device;
   std::string capture = AOR_SOURCE_DIR "/captures/boxes-orbit";
   std::string cache = "bench-captures";
@@ -85,6 +91,7 @@ class Harness {
     Capture capture = resampledCapture(options_.capture, config.width, config.height, 2, options_.cache);
     ReplayOptions replay;
     replay.settings = settingsForCapture(capture, config.settings, false);
+    replay.settings.slices += options_.extraSlices;
     replay.frameBegin = 0;
     replay.frameEnd = 1;
     auto probe = replayCapture(vk_, capture, replay, nullptr);
@@ -145,19 +152,26 @@ Config makeConfig(int w, int h, const std::string& preset, int bent) {
 // Slices x steps beyond the presets, at one size, for the scaling fit.
 const std::vector<std::pair<int, int>> kScalingSliceSteps{{1, 2}, {2, 2}, {2, 4}, {3, 3}, {4, 4}, {9, 3}, {6, 6}};
 
+std::pair<int, int> scalingSize();
+
 void registerAll() {
   const auto& o = harness->options();
   for (auto [w, h] : o.sizes) {
     for (const auto& preset : o.presets) registerConfig(makeConfig(w, h, preset, 1), true);
     registerConfig(makeConfig(w, h, "high", 0), false);  // bent=0 vs bent=1
   }
-  auto [w, h] = o.sizes.size() > 1 ? o.sizes[1] : o.sizes[0];
+  auto [w, h] = scalingSize();
   for (auto [slices, steps] : kScalingSliceSteps) {
     Config c = makeConfig(w, h, "high", 1);
     c.settings.slices = slices;
     c.settings.steps = steps;
     registerSeries("gtao/" + c.label(), c, "gtao");
   }
+}
+
+std::pair<int, int> scalingSize() {
+  const auto& o = harness->options();
+  return o.scalingSize ? *o.scalingSize : o.sizes.size() > 1 ? o.sizes[1] : o.sizes[0];
 }
 
 ScalingInput scalingInput() {
@@ -167,7 +181,7 @@ ScalingInput scalingInput() {
   for (auto [w, h] : o.sizes)
     if (const auto* m = harness->alreadyMeasured(makeConfig(w, h, "high", 1)))
       in.byPixels.push_back({double(w) * h, medianOf(m->pipelineMs)});
-  auto [w, h] = o.sizes.size() > 1 ? o.sizes[1] : o.sizes[0];
+  auto [w, h] = scalingSize();
   for (auto [slices, steps] : kScalingSliceSteps) {
     Config c = makeConfig(w, h, "high", 1);
     c.settings.slices = slices;
@@ -185,6 +199,12 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
+std::pair<int, int> parseSize(const std::string& s) {
+  int w = 0, h = 0;
+  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw std::invalid_argument("bad size " + s);
+  return {w, h};
+}
+
 // Takes the flags this program owns out of argv, leaving Google Benchmark's.
 Options parseOwnFlags(int& argc, char** argv) {
   Options o;
@@ -198,15 +218,13 @@ Options parseOwnFlags(int& argc, char** argv) {
     };
     if (auto v = value("--sizes")) {
       o.sizes.clear();
-      for (const auto& s : splitList(*v)) {
-        int w = 0, h = 0;
-        if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw std::invalid_argument("bad size " + s);
-        o.sizes.push_back({w, h});
-      }
-    } else if (auto p = value("--presets")) o.presets = splitList(*p);
+      for (const auto& s : splitList(*v)) o.sizes.push_back(parseSize(s));
+    } else if (auto ss = value("--scaling-size")) o.scalingSize = parseSize(*ss);
+    else if (auto p = value("--presets")) o.presets = splitList(*p);
     else if (auto r = value("--reps")) o.reps = std::stoi(*r);
     else if (auto wu = value("--warmup")) o.warmup = std::stoi(*wu);
     else if (auto wm = value("--warmup-ms")) o.warmupMs = std::stod(*wm);
+    else if (auto es = value("--extra-slices")) o.extraSlices = std::stoi(*es);
     else if (auto d = value("--device")) o.device = *d;
     else if (auto c = value("--capture")) o.capture = *c;
     else if (auto c2 = value("--cache")) o.cache = *c2;

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Side-by-side table: ao_bench medians (Google Benchmark JSON) next to the naive baseline's output.
 
-usage: summarize.py ao_bench.json baseline.txt
+usage: summarize.py ao_bench.json baseline-before.txt [baseline-after.txt]
+The baseline column shows before / after when both are given; the ratio uses their mean.
 """
 import json
 import re
@@ -31,21 +32,23 @@ def baseline_medians(path):
 
 
 def main():
-    bench, baseline = bench_medians(sys.argv[1]), baseline_medians(sys.argv[2])
-    sizes = sorted({size for size, _ in baseline}, key=lambda s: int(s.split("x")[0]))
+    bench = bench_medians(sys.argv[1])
+    baselines = [baseline_medians(path) for path in sys.argv[2:]]
+    sizes = sorted({size for size, _ in baselines[0]}, key=lambda s: int(s.split("x")[0]))
     print("| size | preset | naive baseline 1 pass | pipeline (bent=1) | pipeline (bent=0) | linearize | gtao | spatial | temporal | pipeline / baseline |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for size in sizes:
         for preset, st in (("low", "1x2"), ("medium", "2x2"), ("high", "3x3"), ("ultra", "9x3")):
             key = f"s{st}/{size}"
             pipe = bench.get(f"pipeline/{key}")
-            base = baseline.get((size, st))
-            if pipe is None or base is None:
+            bases = [b.get((size, st)) for b in baselines]
+            if pipe is None or None in bases:
                 continue
+            base = sum(bases) / len(bases)
             cells = [bench.get(f"{p}/{key}") for p in ("linearize_depth", "gtao", "spatial", "temporal")]
             bent0 = bench.get(f"pipeline/s{st}/bent:0/{size}")
             fmt = lambda v: "-" if v is None else f"{v:.3f}"
-            print(f"| {size} | {preset} | {base:.3f} | {pipe:.3f} | {fmt(bent0)} | "
+            print(f"| {size} | {preset} | {' / '.join(f'{b:.3f}' for b in bases)} | {pipe:.3f} | {fmt(bent0)} | "
                   + " | ".join(fmt(c) for c in cells) + f" | {pipe / base:.2f} |")
     print("\nmedian GPU ms (timestamp queries) per repetition; same device, same invocation of run_bench.sh")
 

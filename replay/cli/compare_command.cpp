@@ -1,6 +1,7 @@
 // `aoreplay compare BASELINE NEW`: per pass verdicts from two report.json or Google Benchmark JSON
 // files; exit 1 only when something got significantly slower.
 #include <memory>
+#include <regex>
 
 #include <fmt/format.h>
 
@@ -15,11 +16,27 @@ namespace {
 
 struct CompareArgs {
   std::string baseline, candidate, json;
+  std::vector<std::string> ignore;
   CompareOptions options;
 };
 
+// Drops names matching any --ignore pattern (e.g. host-link copies that are not the algorithm).
+TimingSamples withoutIgnored(TimingSamples samples, const std::vector<std::string>& patterns) {
+  for (const auto& pattern : patterns) {
+    std::regex re;
+    try {
+      re = std::regex(pattern);
+    } catch (const std::regex_error& e) {
+      throw InputError("", std::nullopt, "--ignore", fmt::format("\"{}\" is not a regular expression: {}", pattern, e.what()));
+    }
+    std::erase_if(samples, [&](const auto& entry) { return std::regex_search(entry.first, re); });
+  }
+  return samples;
+}
+
 int compareCommand(const CompareArgs& args) {
-  auto comparison = compareTimings(loadTimingSamples(args.baseline), loadTimingSamples(args.candidate), args.options);
+  auto comparison = compareTimings(withoutIgnored(loadTimingSamples(args.baseline), args.ignore),
+                                   withoutIgnored(loadTimingSamples(args.candidate), args.ignore), args.options);
   if (comparison.passes.empty())
     throw InputError(args.candidate, std::nullopt, "", fmt::format("no pass or benchmark name in common with {}", args.baseline));
   fmt::print("{}", comparisonTable(comparison));
@@ -35,6 +52,7 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_option("baseline", args->baseline, "baseline report.json or benchmark JSON")->required();
   cmd->add_option("new", args->candidate, "new report.json or benchmark JSON")->required();
   cmd->add_option("--json", args->json, "also write the verdicts as JSON to this file");
+  cmd->add_option("--ignore", args->ignore, "skip names matching this regular expression (repeatable)");
   cmd->add_option("--alpha", args->options.alpha, "false-alarm rate over all names (Bonferroni split)")
       ->check(CLI::Range(1e-9, 0.5));
   cmd->add_option("--min-effect", args->options.minEffect, "smallest relative median change that counts")

@@ -237,6 +237,12 @@ TEST(CompareCommand, ExitCodesTableAndJson) {
   EXPECT_EQ(r.exitCode, 0) << r.output;  // faster never fails
   EXPECT_NE(r.output.find("faster"), std::string::npos) << r.output;
 
+  r = test::runAoreplay("compare " + base.string() + " " + slower.string() + " --ignore '^gtao$' --ignore '^total$'");
+  EXPECT_EQ(r.exitCode, 0) << r.output;  // the slow pass is ignored
+  EXPECT_EQ(r.output.find("gtao"), std::string::npos) << r.output;
+  r = test::runAoreplay("compare " + base.string() + " " + slower.string() + " --ignore '('");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+
   r = test::runAoreplay("compare " + base.string() + " " + (scratch() / "nope.json").string());
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("nope.json"), std::string::npos) << r.output;
