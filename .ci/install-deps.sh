@@ -8,7 +8,7 @@ packages=(
   glslang-tools spirv-tools
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpng-dev
   libembree-dev libtinyobjloader-dev glmark2-data
-  libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools
+  libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz
   clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/
 )
