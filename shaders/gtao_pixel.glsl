@@ -43,75 +43,78 @@ float gtaoSampleHorizonCos(ivec2 samplePixel, vec3 centre, vec3 normal, float pr
   return mix(lowCos, sampleCos, weight);
 }
 
-float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
-  bentNormal = vec3(0.0f, 0.0f, 1.0f);
-  float dist = gtaoLoadDistance(pixel);
-  if (dist <= 0.0f) return 1.0f;
+// What every slice needs: its view-space direction and the projected normal's angle n (with cos
+// and sin) in the slice plane, plus the tangent-plane horizons on both sides.
+struct GtaoSlice {
+  vec3 direction;
+  float projectedLength;
+  float n, cosN, sinN;
+  float lowCosPos;  // cos(n + pi/2)
+  float lowCosNeg;  // cos(n - pi/2)
+};
 
-  vec3 centre = gtaoViewPosition(pixel, dist);
-  vec3 viewDir = normalize(-centre);
-  vec3 normal = gtaoLoadViewNormal(pixel);
-  if (!(dot(normal, normal) > 1e-12f)) normal = viewDir;  // no usable normal: assume it faces us
+// False when the normal lies along the slice axis: such a slice sees nothing.
+bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) slice) {
+  slice.direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0f));
+  // Unit: direction has z = 0 and viewDir.z > 0, so they are never parallel.
+  vec3 orthoDirection = normalize(slice.direction - dot(slice.direction, viewDir) * viewDir);
+  vec3 axis = normalize(cross(slice.direction, viewDir));
+  vec3 projectedNormal = normal - axis * dot(normal, axis);
+  slice.projectedLength = length(projectedNormal);
+  if (!(slice.projectedLength > 1e-6f)) return false;
 
-  float screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
-  vec2 noise = gtaoNoise(pixel, pc.frameIndex);
+  // n from the projected normal's two components in the slice plane: acos(cosN) and
+  // sqrt(1 - cosN^2) lose half the digits for surfaces facing the viewer (cosN near 1; 3e-4 rad
+  // in float32), atan does not. A normal facing away is limited to the horizon (n = +-pi/2).
+  float normalAlong = dot(projectedNormal, viewDir);
+  float normalAcross = dot(projectedNormal, orthoDirection);
+  float signN = normalAcross >= 0.0f ? 1.0f : -1.0f;
+  bool facesViewer = normalAlong > 0.0f;
+  slice.cosN = facesViewer ? clamp(normalAlong / slice.projectedLength, 0.0f, 1.0f) : 0.0f;
+  slice.n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
+  slice.sinN = facesViewer ? clamp(normalAcross / slice.projectedLength, -1.0f, 1.0f) : signN;
+  slice.lowCosPos = -slice.sinN;
+  slice.lowCosNeg = slice.sinN;
+  return true;
+}
 
-  float visibility = 0.0f;
-  float unoccluded = 0.0f;  // what the same slices integrate to with no occluder at all
-  vec3 bentSum = vec3(0.0f);
-  for (int slice = 0; slice < kSlices; ++slice) {
-    float phi = (float(slice) + noise.x) * (kPi / float(kSlices));
-    vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
-    vec3 direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0f));
-    // Unit: direction has z = 0 and viewDir.z > 0, so they are never parallel.
-    vec3 orthoDirection = normalize(direction - dot(direction, viewDir) * viewDir);
-    vec3 axis = normalize(cross(direction, viewDir));
-    vec3 projectedNormal = normal - axis * dot(normal, axis);
-    float projectedLength = length(projectedNormal);
-    if (!(projectedLength > 1e-6f)) continue;  // normal along the slice axis: the slice sees nothing
-
-    // n from the projected normal's two components in the slice plane: acos(cosN) and
-    // sqrt(1 - cosN^2) lose half the digits for surfaces facing the viewer (cosN near 1; 3e-4 rad
-    // in float32), atan does not. A normal facing away is limited to the horizon (n = +-pi/2).
-    float normalAlong = dot(projectedNormal, viewDir);
-    float normalAcross = dot(projectedNormal, orthoDirection);
-    float signN = normalAcross >= 0.0f ? 1.0f : -1.0f;
-    bool facesViewer = normalAlong > 0.0f;
-    float cosN = facesViewer ? clamp(normalAlong / projectedLength, 0.0f, 1.0f) : 0.0f;
-    float n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
-    float sinN = facesViewer ? clamp(normalAcross / projectedLength, -1.0f, 1.0f) : signN;
-    float lowCosPos = -sinN;  // cos(n + pi/2)
-    float lowCosNeg = sinN;   // cos(n - pi/2)
-    float horizonCosPos = lowCosPos;
-    float horizonCosNeg = lowCosNeg;
-
-    for (int step = 0; step < kSteps; ++step) {
-      float t = (float(step) + noise.y) / float(kSteps);
-      float offsetPixels = t * t * screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
-      ivec2 offset = ivec2(round(omega * offsetPixels));
-      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, projectedLength, cosN, sinN, 1.0f, lowCosPos));
-      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, projectedLength, cosN, sinN, -1.0f, lowCosNeg));
-    }
-
-    // Horizons as angles from the view vector, limited to the hemisphere around the normal.
-    float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
-    float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
-    float cosPos = cos(hPos), sinPos = sin(hPos), cosNeg = cos(hNeg), sinNeg = sin(hNeg);
-    visibility += projectedLength * (gtaoHorizonVisibility(hPos, cosPos, sinPos, cosN, sinN) +
-                                     gtaoHorizonVisibility(hNeg, cosNeg, sinNeg, cosN, sinN));
-    unoccluded += projectedLength * gtaoUnoccludedSlice(n, cosN, sinN);
-
-    if (kBent) {
-      vec2 terms = gtaoHorizonBentTerms(cosNeg, sinNeg, cosN, sinN) + gtaoHorizonBentTerms(cosPos, sinPos, cosN, sinN);
-      vec2 b = vec2((terms.x + 16.0f * sinN) / 12.0f, (terms.y + 8.0f * cosN) / 12.0f);
-      vec3 sliceBent = vec3(direction.x * b.x, direction.y * b.x, b.y);
-      bentSum += rotateZTo(viewDir, sliceBent) * projectedLength;
-    }
+// Integrates one slice whose horizon cosines were found, into the pixel's running sums.
+void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosNeg, vec3 viewDir,
+                         AOR_INOUT(float) visibility, AOR_INOUT(float) unoccluded, AOR_INOUT(vec3) bentSum) {
+  float n = slice.n, cosN = slice.cosN, sinN = slice.sinN;
+  // Horizons as angles from the view vector, limited to the hemisphere around the normal.
+  float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
+  float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
+  float cosPos = cos(hPos), sinPos = sin(hPos), cosNeg = cos(hNeg), sinNeg = sin(hNeg);
+  visibility += slice.projectedLength * (gtaoHorizonVisibility(hPos, cosPos, sinPos, cosN, sinN) +
+                                         gtaoHorizonVisibility(hNeg, cosNeg, sinNeg, cosN, sinN));
+  unoccluded += slice.projectedLength * gtaoUnoccludedSlice(n, cosN, sinN);
+  if (kBent) {
+    vec2 terms = gtaoHorizonBentTerms(cosNeg, sinNeg, cosN, sinN) + gtaoHorizonBentTerms(cosPos, sinPos, cosN, sinN);
+    vec2 b = vec2((terms.x + 16.0f * sinN) / 12.0f, (terms.y + 8.0f * cosN) / 12.0f);
+    vec3 sliceBent = vec3(slice.direction.x * b.x, slice.direction.y * b.x, b.y);
+    bentSum += rotateZTo(viewDir, sliceBent) * slice.projectedLength;
   }
-  // Deviation from seed 000 / XeGTAO, on purpose: divide by the unoccluded integral of the same
-  // slices instead of the slice count. Both tend to the same value as slices grow, but a single
-  // unoccluded slice integrates to projLen * (cos n + n sin n), not 1, so dividing by the count
-  // makes tilted planes scatter around 1 (0.92 at 30 degrees with 9 slices); the ratio is exact.
+}
+
+// The centre of a pixel's search; false for sky (visibility 1, bent normal toward the viewer).
+bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(vec3) centre, AOR_OUT(vec3) viewDir, AOR_OUT(vec3) normal,
+                     AOR_OUT(float) screenRadius) {
+  float dist = gtaoLoadDistance(pixel);
+  if (dist <= 0.0f) return false;
+  centre = gtaoViewPosition(pixel, dist);
+  viewDir = normalize(-centre);
+  normal = gtaoLoadViewNormal(pixel);
+  if (!(dot(normal, normal) > 1e-12f)) normal = viewDir;  // no usable normal: assume it faces us
+  screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
+  return true;
+}
+
+// Deviation from seed 000 / XeGTAO, on purpose: divide by the unoccluded integral of the same
+// slices instead of the slice count. Both tend to the same value as slices grow, but a single
+// unoccluded slice integrates to projLen * (cos n + n sin n), not 1, so dividing by the count
+// makes tilted planes scatter around 1 (0.92 at 30 degrees with 9 slices); the ratio is exact.
+float gtaoResolve(float visibility, float unoccluded, vec3 bentSum, vec3 normal, AOR_OUT(vec3) bentNormal) {
   visibility = unoccluded > 0.0f ? clamp(visibility / unoccluded, 0.0f, 1.0f) : 1.0f;
   if (pc.power != 1.0f) visibility = pow(visibility, pc.power);  // pow(x, 1) is exp2(log2(x)) on some devices
   if (kBent) {
@@ -119,4 +122,35 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
     bentNormal = bentLength > 1e-6f ? bentSum / bentLength : normal;
   }
   return visibility;
+}
+
+float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
+  bentNormal = vec3(0.0f, 0.0f, 1.0f);
+  vec3 centre, viewDir, normal;
+  float screenRadius;
+  if (!gtaoPixelCentre(pixel, centre, viewDir, normal, screenRadius)) return 1.0f;
+  vec2 noise = gtaoNoise(pixel, pc.frameIndex);
+
+  float visibility = 0.0f;
+  float unoccluded = 0.0f;  // what the same slices integrate to with no occluder at all
+  vec3 bentSum = vec3(0.0f);
+  for (int sliceIndex = 0; sliceIndex < kSlices; ++sliceIndex) {
+    float phi = (float(sliceIndex) + noise.x) * (kPi / float(kSlices));
+    vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
+    GtaoSlice slice;
+    if (!gtaoSliceFrame(omega, viewDir, normal, slice)) continue;
+    float horizonCosPos = slice.lowCosPos;
+    float horizonCosNeg = slice.lowCosNeg;
+    for (int step = 0; step < kSteps; ++step) {
+      float t = (float(step) + noise.y) / float(kSteps);
+      float offsetPixels = t * t * screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
+      ivec2 offset = ivec2(round(omega * offsetPixels));
+      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, slice.projectedLength,
+                                                              slice.cosN, slice.sinN, 1.0f, slice.lowCosPos));
+      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, slice.projectedLength,
+                                                              slice.cosN, slice.sinN, -1.0f, slice.lowCosNeg));
+    }
+    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, viewDir, visibility, unoccluded, bentSum);
+  }
+  return gtaoResolve(visibility, unoccluded, bentSum, normal, bentNormal);
 }

@@ -33,66 +33,33 @@ vec3 gtaoLoadViewNormal(ivec2 pixel) {
 
 float referencePixel(ivec2 pixel, out vec3 bentNormal) {
   bentNormal = vec3(0.0, 0.0, 1.0);
-  float dist = gtaoLoadDistance(pixel);
-  if (dist <= 0.0) return 1.0;
+  vec3 centre, viewDir, normal;
+  float screenRadius;
+  if (!gtaoPixelCentre(pixel, centre, viewDir, normal, screenRadius)) return 1.0;
 
-  vec3 centre = gtaoViewPosition(pixel, dist);
-  vec3 viewDir = normalize(-centre);
-  vec3 normal = gtaoLoadViewNormal(pixel);
-  if (!(dot(normal, normal) > 1e-12)) normal = viewDir;
-
-  float screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
   float visibility = 0.0;
   float unoccluded = 0.0;
   vec3 bentSum = vec3(0.0);
-  for (int slice = 0; slice < kSlices; ++slice) {
-    float phi = (float(slice) + 0.5) * (kPi / float(kSlices));
+  for (int sliceIndex = 0; sliceIndex < kSlices; ++sliceIndex) {
+    float phi = (float(sliceIndex) + 0.5) * (kPi / float(kSlices));  // evenly spaced, no noise
     vec2 omega = vec2(cos(phi), sin(phi));
-    vec3 direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0));
-    // Slice frame exactly as gtaoPixel builds it (n from atan: precise for surfaces facing us).
-    vec3 orthoDirection = normalize(direction - dot(direction, viewDir) * viewDir);
-    vec3 axis = normalize(cross(direction, viewDir));
-    vec3 projectedNormal = normal - axis * dot(normal, axis);
-    float projectedLength = length(projectedNormal);
-    if (!(projectedLength > 1e-6)) continue;
-
-    float normalAlong = dot(projectedNormal, viewDir);
-    float normalAcross = dot(projectedNormal, orthoDirection);
-    float signN = normalAcross >= 0.0 ? 1.0 : -1.0;
-    bool facesViewer = normalAlong > 0.0;
-    float cosN = facesViewer ? clamp(normalAlong / projectedLength, 0.0, 1.0) : 0.0;
-    float n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
-    float sinN = facesViewer ? clamp(normalAcross / projectedLength, -1.0, 1.0) : signN;
-    float lowCosPos = -sinN;  // cos(n + pi/2)
-    float lowCosNeg = sinN;   // cos(n - pi/2)
-    float horizonCosPos = lowCosPos;
-    float horizonCosNeg = lowCosNeg;
-
+    GtaoSlice slice;
+    if (!gtaoSliceFrame(omega, viewDir, normal, slice)) continue;
+    float horizonCosPos = slice.lowCosPos;
+    float horizonCosNeg = slice.lowCosNeg;
     // One sample per crossed pixel: advance one pixel along the major axis per step.
     vec2 step = omega / max(abs(omega.x), abs(omega.y));
     int count = int(screenRadius / length(step)) + 1;
     for (int k = 1; k <= count; ++k) {
       ivec2 offset = ivec2(round(step * float(k)));
-      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, projectedLength, cosN, sinN, 1.0, lowCosPos));
-      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, projectedLength, cosN, sinN, -1.0, lowCosNeg));
+      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, slice.projectedLength,
+                                                              slice.cosN, slice.sinN, 1.0, slice.lowCosPos));
+      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, slice.projectedLength,
+                                                              slice.cosN, slice.sinN, -1.0, slice.lowCosNeg));
     }
-
-    float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
-    float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
-    visibility += projectedLength * gtaoSliceVisibility(hPos, -hNeg, n);
-    unoccluded += projectedLength * gtaoUnoccludedSlice(n, cosN, sinN);
-    if (kBent) {
-      vec2 b = gtaoSliceBentNormal(hNeg, hPos, n);
-      bentSum += rotateZTo(viewDir, vec3(direction.x * b.x, direction.y * b.x, b.y)) * projectedLength;
-    }
+    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, viewDir, visibility, unoccluded, bentSum);
   }
-  visibility = unoccluded > 0.0 ? clamp(visibility / unoccluded, 0.0, 1.0) : 1.0;
-  if (pc.power != 1.0) visibility = pow(visibility, pc.power);
-  if (kBent) {
-    float bentLength = length(bentSum);
-    bentNormal = bentLength > 1e-6 ? bentSum / bentLength : normal;
-  }
-  return visibility;
+  return gtaoResolve(visibility, unoccluded, bentSum, normal, bentNormal);
 }
 
 void main() {
