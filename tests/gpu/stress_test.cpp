@@ -228,6 +228,9 @@ struct StressCase {
   StressScene scene;
 };
 
+// Names the case in test listings instead of dumping its bytes.
+void PrintTo(const StressCase& c, std::ostream* os) { *os << c.name; }
+
 StressScene scaled(double scale, double nearZ, double farZ, bool reversed) {
   StressScene s;
   s.nearZ = nearZ;
