@@ -161,31 +161,62 @@ void drawSeries(std::string& svg, const PlotSeries& s, const char* color, const 
   }
 }
 
-// One row between the title and the plot, so it never hides a point: a swatch and a name per
-// series, then the highlighted-point marker when any point is highlighted.
-void drawLegend(std::string& svg, const std::vector<PlotSeries>& series, const Axis& x) {
-  constexpr double kCharWidth = 7.0, kRowY = 44;
-  double left = x.pixelLo;
-  auto entry = [&](const std::string& swatch, const std::string& name) {
-    svg += swatch;
-    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 26, kRowY + 4, escapeXml(name));
-    left += 26 + kCharWidth * double(name.size()) + 18;
-  };
-  for (size_t i = 0; i < series.size(); ++i) {
-    const char* color = kPalette[i % std::size(kPalette)];
-    entry(series[i].lines
-              ? fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"/>)" "\n",
-                            left, kRowY, left + 20, kRowY, color)
-              : fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
-                            left + 10, kRowY, color),
-          series[i].name);
-  }
+constexpr double kLegendCharWidth = 7.0, kLegendFirstRowY = 44, kLegendRowHeight = 16;
+
+struct LegendEntry {
+  std::string swatch;  // drawn at (left, row y) by the format below
+  std::string name;
+  bool line = false;
+  bool highlight = false;
+  const char* color = "#000";
+};
+
+std::vector<LegendEntry> legendEntries(const std::vector<PlotSeries>& series) {
+  std::vector<LegendEntry> entries;
+  for (size_t i = 0; i < series.size(); ++i)
+    entries.push_back({"", series[i].name, series[i].lines, false, kPalette[i % std::size(kPalette)]});
   bool anyHighlight = false;
   for (const auto& s : series) anyHighlight |= std::find(s.highlighted.begin(), s.highlighted.end(), true) != s.highlighted.end();
-  if (anyHighlight)
-    entry(fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
-                      left + 10, kRowY),
-          "Pareto-optimal");
+  if (anyHighlight) entries.push_back({"", "Pareto-optimal", false, true, "#999"});
+  return entries;
+}
+
+double legendEntryWidth(const LegendEntry& e) { return 26 + kLegendCharWidth * double(e.name.size()) + 18; }
+
+// Rows between the title and the plot, so the legend never hides a point: a swatch and a name
+// per series (then the highlighted-point marker), wrapping onto a new row at the plot's width.
+int legendRows(const std::vector<LegendEntry>& entries, const Axis& x) {
+  int rows = 1;
+  double left = x.pixelLo;
+  for (const auto& e : entries) {
+    if (left > x.pixelLo && left + legendEntryWidth(e) > x.pixelHi) {
+      ++rows;
+      left = x.pixelLo;
+    }
+    left += legendEntryWidth(e);
+  }
+  return rows;
+}
+
+void drawLegend(std::string& svg, const std::vector<LegendEntry>& entries, const Axis& x) {
+  double left = x.pixelLo, rowY = kLegendFirstRowY;
+  for (const auto& e : entries) {
+    if (left > x.pixelLo && left + legendEntryWidth(e) > x.pixelHi) {
+      left = x.pixelLo;
+      rowY += kLegendRowHeight;
+    }
+    if (e.highlight)
+      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
+                         left + 10, rowY);
+    else if (e.line)
+      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"/>)" "\n",
+                         left, rowY, left + 20, rowY, e.color);
+    else
+      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
+                         left + 10, rowY, e.color);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 26, rowY + 4, escapeXml(e.name));
+    left += legendEntryWidth(e);
+  }
 }
 
 }  // namespace
@@ -198,7 +229,8 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   x.pixelLo = kMarginLeft;
   x.pixelHi = width - kMarginRight;
   y.pixelLo = height - kMarginBottom;  // y grows upward: low values at the bottom
-  y.pixelHi = kMarginTop;
+  auto legend = legendEntries(series);
+  y.pixelHi = kMarginTop + kLegendRowHeight * double(legendRows(legend, x) - 1);
 
   std::string svg = fmt::format(
       R"(<svg xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif" font-size="12">)" "\n",
@@ -207,7 +239,7 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   drawAxes(svg, x, y, options);
   drawVerticalMarkers(svg, x, y, options.verticalMarkers);
   for (size_t i = 0; i < series.size(); ++i) drawSeries(svg, series[i], kPalette[i % std::size(kPalette)], x, y);
-  drawLegend(svg, series, x);
+  drawLegend(svg, legend, x);
   svg += "</svg>\n";
   return svg;
 }

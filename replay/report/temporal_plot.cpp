@@ -39,6 +39,7 @@ void writePerFramePlot(const std::filesystem::path& outDir, const nlohmann::json
   options.title = fmt::format("{}: temporal stability per frame", report["capture"].value("name", ""));
   options.xLabel = "frame";
   options.yLabel = "error";
+  options.logY = true;  // warping error (MSE) sits orders of magnitude below the absolute errors
   for (const auto& f : frames)
     if (f.value("history", "") == "reset" && f.value("reset_reason", "") != "temporal=0")
       options.verticalMarkers.push_back(f["index"].get<double>());
