@@ -123,6 +123,50 @@ struct HistoryTracker {
   }
 };
 
+
+// What running one frame's graph gives back: timings of the timed runs and, when asked, the facts
+// of its compiled graph that the report records.
+struct FrameGraphRuns {
+  std::vector<PassTiming> passes;
+  std::vector<CulledPassInfo> culled;
+  std::string description;
+  uint64_t peakBytes = 0, unaliasedBytes = 0;
+  nlohmann::json resources;
+};
+
+// Executes the frame's graph `warmup + repeat` times (only the last `repeat` are timed). The graph
+// is rebuilt per run: each run starts from the image states the previous one left.
+FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelines, GraphResources& resources,
+                             GraphExecutor& executor, const AoFrameBuffers& buffers, int warmup, int repeat,
+                             bool describeGraph) {
+  FrameGraphRuns runs;
+  for (int run = 0; run < warmup + repeat; ++run) {
+    auto frameGraph = buildAoFrameGraph(inputs, pipelines, &resources, buffers);
+    auto compiled = frameGraph.graph.compile();
+    executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
+    auto times = executor.submitAndWait();
+    resources.keepFinalStates(frameGraph.graph, compiled);
+    if (run < warmup) continue;
+    if (runs.passes.empty())
+      for (const auto& p : compiled.passes) runs.passes.push_back({frameGraph.graph.passes()[p.pass].name, 0, {}});
+    for (size_t i = 0; i < times.size(); ++i) {
+      runs.passes[i].startMs = times[i].startMs;
+      runs.passes[i].durationsMs.push_back(times[i].durationMs);
+    }
+    if (!describeGraph || run + 1 < warmup + repeat) continue;
+    for (const auto& c : compiled.culled) {
+      const auto& name = frameGraph.graph.passes()[c.pass].name;
+      auto note = frameGraph.notes.find(name);
+      runs.culled.push_back({name, note == frameGraph.notes.end() ? c.reason : note->second + "; " + c.reason});
+    }
+    runs.description = graph::describe(frameGraph.graph, compiled);
+    runs.peakBytes = compiled.peakBytes();
+    runs.unaliasedBytes = compiled.unaliasedTransientBytes + compiled.persistentBytes;
+    runs.resources = graphResourcesJson(frameGraph.graph, compiled);
+  }
+  return runs;
+}
+
 }  // namespace
 
 AoSettings settingsForCapture(const Capture& capture, const AoSettings& base, bool radiusGiven) {
@@ -204,32 +248,15 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
 
     AoFrameInputs inputs{camera, history.camera, capture.hasNormals, temporalWanted, record.historyValid, settings};
     t = Clock::now();
-    for (int run = 0; run < options.warmup + options.repeat; ++run) {
-      // Rebuilt per run: each run starts from the states the previous one left.
-      auto frameGraph = buildAoFrameGraph(inputs, pipelines, &resources, buffers);
-      auto compiled = frameGraph.graph.compile();
-      executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
-      auto times = executor.submitAndWait();
-      resources.keepFinalStates(frameGraph.graph, compiled);
-      if (run < options.warmup) continue;
-      if (record.passes.empty())
-        for (const auto& p : compiled.passes) record.passes.push_back({frameGraph.graph.passes()[p.pass].name, 0, {}});
-      for (size_t i = 0; i < times.size(); ++i) {
-        record.passes[i].startMs = times[i].startMs;
-        record.passes[i].durationsMs.push_back(times[i].durationMs);
-      }
-      if (index + 1 == end && run + 1 == options.warmup + options.repeat) {
-        result.culled.clear();
-        for (const auto& c : compiled.culled) {
-          const auto& name = frameGraph.graph.passes()[c.pass].name;
-          auto note = frameGraph.notes.find(name);
-          result.culled.push_back({name, note == frameGraph.notes.end() ? c.reason : note->second + "; " + c.reason});
-        }
-        result.graphDescription = graph::describe(frameGraph.graph, compiled);
-        result.peakGpuBytes = compiled.peakBytes();
-        result.unaliasedGpuBytes = compiled.unaliasedTransientBytes + compiled.persistentBytes;
-        result.resources = graphResourcesJson(frameGraph.graph, compiled);
-      }
+    bool lastFrame = index + 1 == end;
+    auto runs = runFrameGraph(inputs, pipelines, resources, executor, buffers, options.warmup, options.repeat, lastFrame);
+    record.passes = std::move(runs.passes);
+    if (lastFrame) {
+      result.culled = std::move(runs.culled);
+      result.graphDescription = std::move(runs.description);
+      result.peakGpuBytes = runs.peakBytes;
+      result.unaliasedGpuBytes = runs.unaliasedBytes;
+      result.resources = std::move(runs.resources);
     }
     record.gpuWallMs = msSince(t);
 
