@@ -13,7 +13,9 @@ AOR_DECLARE_SHADER(linearize_depth)
 AOR_DECLARE_SHADER(reconstruct_normals)
 AOR_DECLARE_SHADER(gtao)
 AOR_DECLARE_SHADER(gtao_reference)
-AOR_DECLARE_SHADER(spatial_denoise)
-AOR_DECLARE_SHADER(temporal_denoise)
+AOR_DECLARE_SHADER(spatial_denoise_rgba16f)
+AOR_DECLARE_SHADER(spatial_denoise_r16f)
+AOR_DECLARE_SHADER(temporal_denoise_rgba16f)
+AOR_DECLARE_SHADER(temporal_denoise_r16f)
 #undef AOR_DECLARE_SHADER
 }  // namespace aor::spirv

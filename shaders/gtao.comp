@@ -12,13 +12,13 @@ layout(constant_id = kGtaoSpecViewNormals) const bool kViewNormals = false;
 
 layout(push_constant, scalar) uniform Push { GtaoConstants pc; };
 layout(set = 0, binding = 0, r32f) uniform readonly image2D viewDistance;  // linear distance, sky <= 0 (storage read: cheaper than a sampler on lavapipe)
-layout(set = 0, binding = 1) uniform sampler2D normals;       // RGBA16F, world (or view) space
+layout(set = 0, binding = 1, rgba16f) uniform readonly image2D normals;  // world (or view) space; storage read, as above
 layout(set = 0, binding = 2) uniform writeonly image2D aoOut; // R16F visibility, or RGBA16F bent.xyz + visibility
 
 float gtaoLoadDistance(ivec2 pixel) { return imageLoad(viewDistance, pixel).r; }
 
 vec3 gtaoLoadViewNormal(ivec2 pixel) {
-  vec3 n = texelFetch(normals, pixel, 0).xyz;
+  vec3 n = imageLoad(normals, pixel).xyz;
   if (!kViewNormals) n = mat3(pc.worldToView0.xyz, pc.worldToView1.xyz, pc.worldToView2.xyz) * n;
   float len2 = dot(n, n);
   return (len2 > 1e-12 && !isinf(len2)) ? n * inversesqrt(len2) : vec3(0.0);  // NaN/Inf/zero: unusable

@@ -15,12 +15,12 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
   graph.addPass(
       "spatial",
       [&](graph::PassBuilder& b) {
-        b.read(ao);
+        b.read(ao, graph::Access::StorageRead);
         b.read(distance, graph::Access::StorageRead);
         b.write(blurred);
       },
       [&pipelines, bent, constants, ao, distance, blurred](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.spatial(bent), {{ao}, {distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {blurred, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+        dispatchCompute(ctx, pipelines.spatial(bent), {{ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {blurred, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return blurred;
@@ -41,14 +41,15 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
   constants.size = {camera.width, camera.height};
   constants.blend = settings.temporal;
   constants.depthTolerance = shader::kTemporalDepthTolerance;
-  // Without history the shader variant never reads bindings 2-3; the current inputs stand in so
-  // every binding is valid and no pass declares a read of a history image that does not exist.
-  graph::ResourceId historyAo = hasHistory ? in.historyAo : in.current;
+  // Without history the shader variant never reads bindings 2-3; the current distance (sampled,
+  // like binding 3 expects) stands in so every binding is valid and no pass declares a read of a
+  // history image that does not exist.
+  graph::ResourceId historyAo = hasHistory ? in.historyAo : in.distance;
   graph::ResourceId historyDistance = hasHistory ? in.historyDistance : in.distance;
   graph.addPass(
       "temporal",
       [&](graph::PassBuilder& b) {
-        b.read(in.current);
+        b.read(in.current, graph::Access::StorageRead);
         b.read(in.distance);
         if (hasHistory) {
           b.read(in.historyAo);
@@ -58,7 +59,7 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
       },
       [&pipelines, bent, hasHistory, constants, in, historyAo, historyDistance](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.temporal(bent, hasHistory),
-                        {{in.current}, {in.distance}, {historyAo, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, true},
+                        {{in.current, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {in.distance}, {historyAo, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, hasHistory},
                          {historyDistance}, {in.target, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });

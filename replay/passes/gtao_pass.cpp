@@ -34,11 +34,11 @@ graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipeline
       "gtao",
       [&](graph::PassBuilder& b) {
         b.read(inputs.distance, graph::Access::StorageRead);
-        b.read(inputs.normals);
+        b.read(inputs.normals, graph::Access::StorageRead);
         b.write(ao);
       },
       [&pipelines, slices = settings.slices, steps = settings.steps, bent, constants, inputs, ao](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals), {{inputs.distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {inputs.normals}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals), {{inputs.distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {inputs.normals, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return ao;

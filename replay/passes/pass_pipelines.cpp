@@ -43,7 +43,7 @@ const ComputePipeline& PassPipelines::reconstructNormals() {
 const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals));
   if (fresh) {
-    VkDescriptorType bindings[] = {kStorage, kSampled, kStorage};  // distance read as a storage image
+    VkDescriptorType bindings[] = {kStorage, kStorage, kStorage};  // distance and normals read as storage images
     SpecializationValue spec[] = {{uint32_t(shader::kGtaoSpecSlices), uint32_t(slices)},
                                   {uint32_t(shader::kGtaoSpecSteps), uint32_t(steps)},
                                   {uint32_t(shader::kGtaoSpecBent), bent ? 1u : 0u},
@@ -68,9 +68,10 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
 const ComputePipeline& PassPipelines::spatial(bool bent) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("spatial:{}", bent));
   if (fresh) {
-    VkDescriptorType bindings[] = {kSampled, kStorage, kStorage};  // distance read as a storage image
+    VkDescriptorType bindings[] = {kStorage, kStorage, kStorage};  // AO and distance read as storage images
     SpecializationValue spec[] = {{uint32_t(shader::kSpatialSpecBent), bent ? 1u : 0u}};
-    it->second = createComputePipeline(vk_, spirv::spatial_denoise_code(), bindings, sizeof(shader::SpatialConstants), spec);
+    auto code = bent ? spirv::spatial_denoise_rgba16f_code() : spirv::spatial_denoise_r16f_code();  // = aoFormat(bent)
+    it->second = createComputePipeline(vk_, code, bindings, sizeof(shader::SpatialConstants), spec);
   }
   return it->second;
 }
@@ -78,10 +79,11 @@ const ComputePipeline& PassPipelines::spatial(bool bent) {
 const ComputePipeline& PassPipelines::temporal(bool bent, bool hasHistory) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("temporal:{}:{}", bent, hasHistory));
   if (fresh) {
-    VkDescriptorType bindings[] = {kSampled, kSampled, kSampled, kSampled, kStorage};
+    VkDescriptorType bindings[] = {kStorage, kSampled, kSampled, kSampled, kStorage};  // current AO read as a storage image
     SpecializationValue spec[] = {{uint32_t(shader::kTemporalSpecBent), bent ? 1u : 0u},
                                   {uint32_t(shader::kTemporalSpecHistory), hasHistory ? 1u : 0u}};
-    it->second = createComputePipeline(vk_, spirv::temporal_denoise_code(), bindings, sizeof(shader::TemporalConstants), spec);
+    auto code = bent ? spirv::temporal_denoise_rgba16f_code() : spirv::temporal_denoise_r16f_code();  // = aoFormat(bent)
+    it->second = createComputePipeline(vk_, code, bindings, sizeof(shader::TemporalConstants), spec);
   }
   return it->second;
 }

@@ -22,7 +22,7 @@ struct PassContext {
 namespace aor {
 
 // One descriptor of a compute dispatch: sampled images use texelFetch/textureLod, storage images
-// are written.
+// are written or read with imageLoad.
 struct DispatchImage {
   graph::ResourceId resource;
   VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;

@@ -1,4 +1,7 @@
-#version 450
+// Body of spatial_denoise_<format>.comp: each variant defines AOR_AO_FORMAT (the AO image's
+// format qualifier) and includes this. A storage read needs the format at compile time because
+// lavapipe lacks shaderStorageImageReadWithoutFormat; imageLoad is much cheaper there than a
+// sampler texelFetch and returns the same texel.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_control_flow_attributes : require
@@ -7,7 +10,7 @@
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kSpatialSpecBent) const bool kBent = true;
 layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
-layout(set = 0, binding = 0) uniform sampler2D aoIn;          // R16F or RGBA16F (bent.xyz, visibility)
+layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoIn;  // R16F or RGBA16F (bent.xyz, visibility)
 layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;  // storage read: cheaper than a sampler on lavapipe
 layout(set = 0, binding = 2) uniform writeonly image2D aoOut;
 
@@ -34,7 +37,7 @@ void loadTile(ivec2 origin) {
     ivec2 t = ivec2(i % kTile, i / kTile);
     ivec2 p = clamp(origin + t, ivec2(0), pc.size - 1);
     tileDistance[t.y][t.x] = imageLoad(viewDistance, p).r;
-    tileAo[t.y][t.x] = texelFetch(aoIn, p, 0);
+    tileAo[t.y][t.x] = imageLoad(aoIn, p);
   }
 }
 

@@ -1,4 +1,5 @@
-#version 450
+// Body of temporal_denoise_<format>.comp: each variant defines AOR_AO_FORMAT (the current AO
+// image's format qualifier) and includes this; see spatial_denoise_body.glsl for why.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "temporal_denoise.h"
@@ -7,7 +8,7 @@ layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kTemporalSpecBent) const bool kBent = true;
 layout(constant_id = kTemporalSpecHistory) const bool kHasHistory = true;
 layout(push_constant, scalar) uniform Push { TemporalConstants pc; };
-layout(set = 0, binding = 0) uniform sampler2D aoCurrent;        // spatial (or GTAO) output
+layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoCurrent;  // spatial (or GTAO) output
 layout(set = 0, binding = 1) uniform sampler2D viewDistance;
 layout(set = 0, binding = 2) uniform sampler2D aoHistory;        // previous output, bilinear sampler
 layout(set = 0, binding = 3) uniform sampler2D previousDistance; // previous frame's linear distance
@@ -16,7 +17,7 @@ layout(set = 0, binding = 4) uniform writeonly image2D aoOut;
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
-  vec4 current = texelFetch(aoCurrent, pixel, 0);
+  vec4 current = imageLoad(aoCurrent, pixel);
   float dist = texelFetch(viewDistance, pixel, 0).r;
   if (!kHasHistory || dist <= 0.0) {  // no history must leave the current value bit for bit
     imageStore(aoOut, pixel, current);
@@ -48,7 +49,7 @@ void main() {
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 p = clamp(pixel + ivec2(dx, dy), ivec2(0), pc.size - 1);
-      float v = kBent ? texelFetch(aoCurrent, p, 0).w : texelFetch(aoCurrent, p, 0).r;
+      float v = kBent ? imageLoad(aoCurrent, p).w : imageLoad(aoCurrent, p).r;
       lo = min(lo, v);
       hi = max(hi, v);
     }
