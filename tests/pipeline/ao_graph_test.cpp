@@ -149,9 +149,11 @@ TEST(AoGraph, PeakMemoryAt1080pFallsWithBentZeroAndWithAliasing) {
     uint64_t unaliased = b->compiled.unaliasedTransientBytes + b->compiled.persistentBytes;
     EXPECT_LT(b->compiled.peakBytes(), unaliased);
     // History images never share memory.
-    for (graph::ResourceId id = 0; id < b->frame.graph.resources().size(); ++id)
-      if (b->frame.graph.resources()[id].kind != graph::ResourceKind::Transient)
+    for (graph::ResourceId id = 0; id < b->frame.graph.resources().size(); ++id) {
+      if (b->frame.graph.resources()[id].kind != graph::ResourceKind::Transient) {
         EXPECT_EQ(b->compiled.resources[id].memorySlot, -1);
+      }
+    }
   }
   EXPECT_LT(noBent.compiled.peakBytes(), bent.compiled.peakBytes());
   // The figures quoted in replay/pipeline/README.md.
