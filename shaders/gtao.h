@@ -48,9 +48,12 @@ AOR_FUNC vec2 gtaoNoise(ivec2 pixel, uint frameIndex) {
 
 // Weight of a horizon sample at view-space distance `dist`: 1 inside radius*(1-falloffRange),
 // fading linearly to 0 at the radius. falloffRange = 0 gives a hard cut-off at the radius.
+AOR_FUNC float gtaoFadeWidth(float radius, float falloffRange) {
+  return max(falloffRange * radius, 1e-6f * radius);
+}
+
 AOR_FUNC float gtaoFalloffWeight(float dist, float radius, float falloffRange) {
-  float fadeWidth = max(falloffRange * radius, 1e-6f * radius);
-  return clamp((radius - dist) / fadeWidth, 0.0f, 1.0f);
+  return clamp((radius - dist) / gtaoFadeWidth(radius, falloffRange), 0.0f, 1.0f);
 }
 
 // Cosine-weighted visibility of one side of a slice (GTAO paper eq. 10, seed 000 inner_integral).
@@ -81,7 +84,8 @@ AOR_FUNC vec2 gtaoSliceBentNormal(float hNeg, float hPos, float n) {
 }
 
 // The two slice integrals above, rewritten with angle-sum and triple-angle identities so they need
-// only sin/cos of each horizon angle and of n: 4 sin/cos per slice instead of 18 (these were most
+// only sin/cos of each horizon angle and of n, which the horizon search already has (the horizon
+// cosine, and sin = +-sqrt(1 - cos^2)): no sin/cos call per slice instead of 18 (these were most
 // of the GTAO pass's cost). Same values up to rounding; hNeg <= n <= hPos, signed as above.
 // One horizon's share of gtaoSliceVisibility: 0.25 (-cos(2h - n) + cos n + 2 h sin n).
 AOR_FUNC float gtaoHorizonVisibility(float h, float cosH, float sinH, float cosN, float sinN) {
@@ -110,10 +114,6 @@ AOR_FUNC vec3 rotateZTo(vec3 v, vec3 x) {
   return x * c + cross(axis, x) + axis * (dot(axis, x) * h);
 }
 
-// acos that tolerates arguments a rounding step outside [-1, 1].
-AOR_FUNC float safeAcos(float x) {
-  return acos(clamp(x, -1.0f, 1.0f));
-}
 
 #include "shared_end.h"
 #endif

@@ -9,9 +9,16 @@ vec3 gtaoViewPosition(ivec2 pixel, float dist) {
   return viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
 }
 
-bool gtaoInsideImage(ivec2 pixel) {
-  return pixel.x >= 0 && pixel.y >= 0 && pixel.x < pc.size.x && pixel.y < pc.size.y;
-}
+// What every sample of a pixel shares: its view-space position, view vector and normal, and the
+// sampling constants derived from the push constants once per pixel rather than once per sample.
+struct GtaoCentre {
+  vec3 position;
+  vec3 viewDir;
+  vec3 normal;
+  float screenRadius;   // pixels
+  float invFadeWidth;   // 1 / width of the falloff ramp (gtaoFalloffWeight)
+  float thinStretch;    // (1 + thin)^2 - 1: the thin heuristic's extra weight on the depth component
+};
 
 // Horizon cosine (angle from the view vector, within the slice) of one sample, blended toward the
 // tangent-plane horizon `lowCos` as the sample's falloff weight drops. Off-screen and sky samples
@@ -21,33 +28,32 @@ bool gtaoInsideImage(ivec2 pixel) {
 // slice) and turned into a slice angle (trace of the tangent plane at n +- pi/2, minus e). Samples
 // snapped to pixel centres leave the slice plane; measuring their cosine to the view vector
 // directly makes flat planes occlude themselves (0.92 at 30 degrees), this makes planes exact.
-float gtaoSampleHorizonCos(ivec2 samplePixel, vec3 centre, vec3 normal, float projectedLength, float cosN, float sinN,
+// Branch-free on purpose: a CPU device (lavapipe) runs both sides of every branch anyway, and the
+// final select drops whatever an unusable sample computed (NaN included).
+float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLength, float cosN, float sinN,
                            float side, float lowCos) {
-  if (!gtaoInsideImage(samplePixel)) return lowCos;
-  float dist = gtaoLoadDistance(samplePixel);
-  if (dist <= 0.0f) return lowCos;
-  vec3 delta = gtaoViewPosition(samplePixel, dist) - centre;
+  ivec2 fetched = clamp(samplePixel, ivec2(0), pc.size - 1);
+  float dist = gtaoLoadDistance(fetched);
+  vec3 delta = gtaoViewPosition(fetched, dist) - c.position;
+  float len2 = dot(delta, delta);
   // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
   // centre sooner, so thin objects do not cast a full horizon.
-  float falloffDist = length(vec3(delta.x, delta.y, delta.z * (1.0f + pc.thin)));
-  float weight = gtaoFalloffWeight(falloffDist, pc.radius, pc.falloffRange);
-  // A sample beyond the radius occludes nothing: return before the angle maths, whose result
-  // would be multiplied by 0 in mix() (0 * Inf = NaN for samples at overflowing distances).
-  if (!(weight > 0.0f)) return lowCos;
-  float len = length(delta);
-  if (!(len > 0.0f)) return lowCos;
-  float sinE = clamp(dot(delta, normal) / (len * projectedLength), -1.0f, 1.0f);
+  float falloffDist = sqrt(c.thinStretch > 0.0f ? len2 + delta.z * delta.z * c.thinStretch : len2);
+  float weight = clamp((pc.radius - falloffDist) * c.invFadeWidth, 0.0f, 1.0f);
+  float sinE = clamp(dot(delta, c.normal) * inversesqrt(len2) * invProjectedLength, -1.0f, 1.0f);
   float cosE = sqrt(1.0f - sinE * sinE);
   // side +1: cos(n + pi/2 - e); side -1: cos(n - pi/2 + e)
   float sampleCos = cosN * sinE - side * sinN * cosE;
-  return mix(lowCos, sampleCos, weight);
+  // weight > 0 also bounds len2 by radius^2: no overflowing distance gets through.
+  bool usable = fetched == samplePixel && dist > 0.0f && weight > 0.0f && len2 > 0.0f;
+  return usable ? mix(lowCos, sampleCos, weight) : lowCos;
 }
 
 // What every slice needs: its view-space direction and the projected normal's angle n (with cos
 // and sin) in the slice plane, plus the tangent-plane horizons on both sides.
 struct GtaoSlice {
   vec3 direction;
-  float projectedLength;
+  float projectedLength, invProjectedLength;
   float n, cosN, sinN;
   float lowCosPos;  // cos(n + pi/2)
   float lowCosNeg;  // cos(n - pi/2)
@@ -56,12 +62,16 @@ struct GtaoSlice {
 // False when the normal lies along the slice axis: such a slice sees nothing.
 bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) slice) {
   slice.direction = normalize(vec3(omega.x * pc.viewPerPixel.x, omega.y * pc.viewPerPixel.y, 0.0f));
-  // Unit: direction has z = 0 and viewDir.z > 0, so they are never parallel.
+  // direction has z = 0 and viewDir.z > 0, so they are never parallel. The axis is the cross
+  // product of two orthogonal unit vectors: unit without normalising. (1 - along^2 instead of the
+  // orthogonal part's length cancels at very wide fields of view: 8e-3 error at 4100x2.)
   vec3 orthoDirection = normalize(slice.direction - dot(slice.direction, viewDir) * viewDir);
-  vec3 axis = normalize(cross(slice.direction, viewDir));
+  vec3 axis = cross(orthoDirection, viewDir);
   vec3 projectedNormal = normal - axis * dot(normal, axis);
-  slice.projectedLength = length(projectedNormal);
-  if (!(slice.projectedLength > 1e-6f)) return false;
+  float projectedLength2 = dot(projectedNormal, projectedNormal);
+  if (!(projectedLength2 > 1e-12f)) return false;
+  slice.invProjectedLength = inversesqrt(projectedLength2);
+  slice.projectedLength = projectedLength2 * slice.invProjectedLength;
 
   // n from the projected normal's two components in the slice plane: acos(cosN) and
   // sqrt(1 - cosN^2) lose half the digits for surfaces facing the viewer (cosN near 1; 3e-4 rad
@@ -70,9 +80,9 @@ bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) sl
   float normalAcross = dot(projectedNormal, orthoDirection);
   float signN = normalAcross >= 0.0f ? 1.0f : -1.0f;
   bool facesViewer = normalAlong > 0.0f;
-  slice.cosN = facesViewer ? clamp(normalAlong / slice.projectedLength, 0.0f, 1.0f) : 0.0f;
+  slice.cosN = facesViewer ? clamp(normalAlong * slice.invProjectedLength, 0.0f, 1.0f) : 0.0f;
   slice.n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
-  slice.sinN = facesViewer ? clamp(normalAcross / slice.projectedLength, -1.0f, 1.0f) : signN;
+  slice.sinN = facesViewer ? clamp(normalAcross * slice.invProjectedLength, -1.0f, 1.0f) : signN;
   slice.lowCosPos = -slice.sinN;
   slice.lowCosNeg = slice.sinN;
   return true;
@@ -82,10 +92,17 @@ bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) sl
 void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosNeg, vec3 viewDir,
                          AOR_INOUT(float) visibility, AOR_INOUT(float) unoccluded, AOR_INOUT(vec3) bentSum) {
   float n = slice.n, cosN = slice.cosN, sinN = slice.sinN;
-  // Horizons as angles from the view vector, limited to the hemisphere around the normal.
-  float hPos = n + clamp(safeAcos(horizonCosPos) - n, -kHalfPi, kHalfPi);
-  float hNeg = n + clamp(-safeAcos(horizonCosNeg) - n, -kHalfPi, kHalfPi);
-  float cosPos = cos(hPos), sinPos = sin(hPos), cosNeg = cos(hNeg), sinNeg = sin(hNeg);
+  // Horizons as angles from the view vector, limited to the hemisphere around the normal: with
+  // n in [-pi/2, pi/2] that is hPos <= n + pi/2 and hNeg >= n - pi/2 (the other bounds hold for
+  // any acos), i.e. the cosines bounded by the tangent-plane horizons. Clamping the cosines keeps
+  // cos/sin of each horizon exact, so no cos/sin of an angle is needed (seed 000 asks for none
+  // beyond the AO integral's; this needs only the two acos).
+  float cosPos = clamp(horizonCosPos, -sinN, 1.0f);
+  float cosNeg = clamp(horizonCosNeg, sinN, 1.0f);
+  float sinPos = sqrt(1.0f - cosPos * cosPos);
+  float sinNeg = -sqrt(1.0f - cosNeg * cosNeg);
+  float hPos = acos(cosPos);
+  float hNeg = -acos(cosNeg);
   visibility += slice.projectedLength * (gtaoHorizonVisibility(hPos, cosPos, sinPos, cosN, sinN) +
                                          gtaoHorizonVisibility(hNeg, cosNeg, sinNeg, cosN, sinN));
   unoccluded += slice.projectedLength * gtaoUnoccludedSlice(n, cosN, sinN);
@@ -98,15 +115,16 @@ void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosN
 }
 
 // The centre of a pixel's search; false for sky (visibility 1, bent normal toward the viewer).
-bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(vec3) centre, AOR_OUT(vec3) viewDir, AOR_OUT(vec3) normal,
-                     AOR_OUT(float) screenRadius) {
+bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(GtaoCentre) c) {
   float dist = gtaoLoadDistance(pixel);
   if (dist <= 0.0f) return false;
-  centre = gtaoViewPosition(pixel, dist);
-  viewDir = normalize(-centre);
-  normal = gtaoLoadViewNormal(pixel);
-  if (!(dot(normal, normal) > 1e-12f)) normal = viewDir;  // no usable normal: assume it faces us
-  screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
+  c.position = gtaoViewPosition(pixel, dist);
+  c.viewDir = normalize(-c.position);
+  c.normal = gtaoLoadViewNormal(pixel);
+  if (!(dot(c.normal, c.normal) > 1e-12f)) c.normal = c.viewDir;  // no usable normal: assume it faces us
+  c.screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
+  c.invFadeWidth = 1.0f / gtaoFadeWidth(pc.radius, pc.falloffRange);
+  c.thinStretch = (1.0f + pc.thin) * (1.0f + pc.thin) - 1.0f;
   return true;
 }
 
@@ -126,31 +144,34 @@ float gtaoResolve(float visibility, float unoccluded, vec3 bentSum, vec3 normal,
 
 float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
   bentNormal = vec3(0.0f, 0.0f, 1.0f);
-  vec3 centre, viewDir, normal;
-  float screenRadius;
-  if (!gtaoPixelCentre(pixel, centre, viewDir, normal, screenRadius)) return 1.0f;
+  GtaoCentre c;
+  if (!gtaoPixelCentre(pixel, c)) return 1.0f;
   vec2 noise = gtaoNoise(pixel, pc.frameIndex);
 
   float visibility = 0.0f;
   float unoccluded = 0.0f;  // what the same slices integrate to with no occluder at all
   vec3 bentSum = vec3(0.0f);
+  // Slice directions are evenly spaced: one cos/sin per pixel, then a rotation per slice.
+  float phi = noise.x * (kPi / float(kSlices));
+  vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
+  vec2 sliceRotation = vec2(cos(kPi / float(kSlices)), sin(kPi / float(kSlices)));
   for (int sliceIndex = 0; sliceIndex < kSlices; ++sliceIndex) {
-    float phi = (float(sliceIndex) + noise.x) * (kPi / float(kSlices));
-    vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
+    if (sliceIndex > 0) omega = vec2(omega.x * sliceRotation.x - omega.y * sliceRotation.y,
+                                     omega.x * sliceRotation.y + omega.y * sliceRotation.x);
     GtaoSlice slice;
-    if (!gtaoSliceFrame(omega, viewDir, normal, slice)) continue;
+    if (!gtaoSliceFrame(omega, c.viewDir, c.normal, slice)) continue;
     float horizonCosPos = slice.lowCosPos;
     float horizonCosNeg = slice.lowCosNeg;
     for (int step = 0; step < kSteps; ++step) {
       float t = (float(step) + noise.y) / float(kSteps);
-      float offsetPixels = t * t * screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
+      float offsetPixels = t * t * c.screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
       ivec2 offset = ivec2(round(omega * offsetPixels));
-      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, slice.projectedLength,
+      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, c, slice.invProjectedLength,
                                                               slice.cosN, slice.sinN, 1.0f, slice.lowCosPos));
-      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, slice.projectedLength,
+      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
                                                               slice.cosN, slice.sinN, -1.0f, slice.lowCosNeg));
     }
-    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, viewDir, visibility, unoccluded, bentSum);
+    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, c.viewDir, visibility, unoccluded, bentSum);
   }
-  return gtaoResolve(visibility, unoccluded, bentSum, normal, bentNormal);
+  return gtaoResolve(visibility, unoccluded, bentSum, c.normal, bentNormal);
 }

@@ -33,9 +33,8 @@ vec3 gtaoLoadViewNormal(ivec2 pixel) {
 
 float referencePixel(ivec2 pixel, out vec3 bentNormal) {
   bentNormal = vec3(0.0, 0.0, 1.0);
-  vec3 centre, viewDir, normal;
-  float screenRadius;
-  if (!gtaoPixelCentre(pixel, centre, viewDir, normal, screenRadius)) return 1.0;
+  GtaoCentre c;
+  if (!gtaoPixelCentre(pixel, c)) return 1.0;
 
   float visibility = 0.0;
   float unoccluded = 0.0;
@@ -44,22 +43,22 @@ float referencePixel(ivec2 pixel, out vec3 bentNormal) {
     float phi = (float(sliceIndex) + 0.5) * (kPi / float(kSlices));  // evenly spaced, no noise
     vec2 omega = vec2(cos(phi), sin(phi));
     GtaoSlice slice;
-    if (!gtaoSliceFrame(omega, viewDir, normal, slice)) continue;
+    if (!gtaoSliceFrame(omega, c.viewDir, c.normal, slice)) continue;
     float horizonCosPos = slice.lowCosPos;
     float horizonCosNeg = slice.lowCosNeg;
     // One sample per crossed pixel: advance one pixel along the major axis per step.
     vec2 step = omega / max(abs(omega.x), abs(omega.y));
-    int count = int(screenRadius / length(step)) + 1;
+    int count = int(c.screenRadius / length(step)) + 1;
     for (int k = 1; k <= count; ++k) {
       ivec2 offset = ivec2(round(step * float(k)));
-      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, centre, normal, slice.projectedLength,
+      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, c, slice.invProjectedLength,
                                                               slice.cosN, slice.sinN, 1.0, slice.lowCosPos));
-      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, centre, normal, slice.projectedLength,
+      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
                                                               slice.cosN, slice.sinN, -1.0, slice.lowCosNeg));
     }
-    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, viewDir, visibility, unoccluded, bentSum);
+    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, c.viewDir, visibility, unoccluded, bentSum);
   }
-  return gtaoResolve(visibility, unoccluded, bentSum, normal, bentNormal);
+  return gtaoResolve(visibility, unoccluded, bentSum, c.normal, bentNormal);
 }
 
 void main() {
