@@ -138,7 +138,7 @@ void registerSeries(const std::string& name, Config config, std::string pass) {
 void registerConfig(const Config& config, bool perPass) {
   registerSeries("pipeline/" + config.label(), config, "pipeline");
   if (!perPass) return;
-  for (const char* pass : {"linearize_depth", "gtao", "spatial", "temporal", "upload", "readback"})
+  for (const char* pass : {"linearize_depth", "gtao", "spatial_columns", "spatial", "temporal", "upload", "readback"})
     registerSeries(std::string(pass) + "/" + config.label(), config, pass);
 }
 

@@ -35,7 +35,7 @@ def main():
     bench = bench_medians(sys.argv[1])
     baselines = [baseline_medians(path) for path in sys.argv[2:]]
     sizes = sorted({size for size, _ in baselines[0]}, key=lambda s: int(s.split("x")[0]))
-    print("| size | preset | naive baseline 1 pass | pipeline (bent=1) | pipeline (bent=0) | linearize | gtao | spatial | temporal | pipeline / baseline |")
+    print("| size | preset | naive baseline 1 pass | pipeline (bent=1) | pipeline (bent=0) | linearize | gtao | spatial (both dispatches) | temporal | pipeline / baseline |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for size in sizes:
         for preset, st in (("low", "1x2"), ("medium", "2x2"), ("high", "3x3"), ("ultra", "9x3")):
@@ -46,6 +46,9 @@ def main():
                 continue
             base = sum(bases) / len(bases)
             cells = [bench.get(f"{p}/{key}") for p in ("linearize_depth", "gtao", "spatial", "temporal")]
+            columns = bench.get(f"spatial_columns/{key}")  # the blur's first dispatch, since issue 6
+            if columns is not None and cells[2] is not None:
+                cells[2] += columns
             bent0 = bench.get(f"pipeline/s{st}/bent:0/{size}")
             fmt = lambda v: "-" if v is None else f"{v:.3f}"
             print(f"| {size} | {preset} | {' / '.join(f'{b:.3f}' for b in bases)} | {pipe:.3f} | {fmt(bent0)} | "

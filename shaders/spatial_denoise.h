@@ -2,6 +2,17 @@
 #define AOR_SPATIAL_DENOISE_H
 // Pass 2 of seed 000: 5x5 bilateral blur, Gaussian sigma 1.5, with edge weights multiplied along a
 // grid path from the centre (horizontal leg first, then vertical) so no tap tunnels through an edge.
+//
+// Run as two dispatches (spatial_columns, then spatial): a tap's weight is
+// gx(dx) * gy(dy) * rowPath(dx) * columnPath(dx, dy), the Gaussian is separable, and the vertical
+// leg of the path starts on the centre row at the tap's column, so it depends on that column pixel
+// alone. spatial_columns sums each pixel's vertical leg once (5 taps: sum of gy * columnPath * ao
+// and of gy * columnPath); spatial combines five of those along the row: 10 taps per pixel instead
+// of 25, the seed's weights exactly (up to float rounding and the half-float column sums).
+// Deviation from the seed's single pass, on purpose: a shared-memory tile would do the same in one
+// dispatch, but on a CPU device (lavapipe) every shared-memory access with a per-thread index is a
+// scalar load per lane behind a branch; image reads are vector gathers. Two image-only dispatches
+// took spatial from 14.2 to 6.0 ms at 640x360 there (bench/RESULTS.md).
 #include "common.h"
 #include "shared_begin.h"
 
@@ -17,6 +28,12 @@ struct SpatialConstants {
 
 AOR_FUNC float spatialGaussian(int dx, int dy) {
   return exp(-float(dx * dx + dy * dy) / (2.0f * kSpatialSigma * kSpatialSigma));
+}
+
+// One leg of the path (from the centre outward, k = 1..radius along one axis): the running path
+// weight after the edge between the previous and the current tap's distance.
+AOR_FUNC float spatialPathStep(float path, float previousDistance, float currentDistance) {
+  return path * depthEdgeWeight(previousDistance, currentDistance);
 }
 
 #include "shared_end.h"

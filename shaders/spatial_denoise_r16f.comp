@@ -1,5 +1,5 @@
 #version 450
-// spatial_denoise reading AO as a r16f storage image (bent=0: visibility).
+// spatial (rows) reading AO and column sums as r16f storage images (bent=0: visibility).
 #extension GL_GOOGLE_include_directive : require
 #define AOR_AO_FORMAT r16f
-#include "spatial_denoise_body.glsl"
+#include "spatial_rows_body.glsl"

@@ -1,5 +1,5 @@
 #version 450
-// spatial_denoise reading AO as a rgba16f storage image (bent=1: bent.xyz + visibility).
+// spatial (rows) reading AO and column sums as rgba16f storage images (bent=1: bent.xyz, visibility).
 #extension GL_GOOGLE_include_directive : require
 #define AOR_AO_FORMAT rgba16f
-#include "spatial_denoise_body.glsl"
+#include "spatial_rows_body.glsl"

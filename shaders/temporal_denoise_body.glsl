@@ -9,16 +9,30 @@ layout(constant_id = kTemporalSpecBent) const bool kBent = true;
 layout(constant_id = kTemporalSpecHistory) const bool kHasHistory = true;
 layout(push_constant, scalar) uniform Push { TemporalConstants pc; };
 layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoCurrent;  // spatial (or GTAO) output
-layout(set = 0, binding = 1) uniform sampler2D viewDistance;
-layout(set = 0, binding = 2) uniform sampler2D aoHistory;        // previous output, bilinear sampler
-layout(set = 0, binding = 3) uniform sampler2D previousDistance; // previous frame's linear distance
+// Every image is read as a storage image (cheaper than a sampler on lavapipe) and the history's
+// bilinear filter is done here: the same weights on every device, instead of each sampler's own
+// sub-texel precision (8 bits on most GPUs).
+layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
+layout(set = 0, binding = 2, AOR_AO_FORMAT) uniform readonly image2D aoHistory;  // previous output
+layout(set = 0, binding = 3, r32f) uniform readonly image2D previousDistance;    // previous frame's linear distance
 layout(set = 0, binding = 4) uniform writeonly image2D aoOut;
+
+// Bilinear read at a continuous pixel position (texel centres at integers), clamped to the edge.
+vec4 historyBilinear(vec2 position) {
+  vec2 base = floor(position);
+  vec2 f = position - base;
+  ivec2 p0 = clamp(ivec2(base), ivec2(0), pc.size - 1);
+  ivec2 p1 = clamp(ivec2(base) + 1, ivec2(0), pc.size - 1);
+  vec4 top = mix(imageLoad(aoHistory, p0), imageLoad(aoHistory, ivec2(p1.x, p0.y)), f.x);
+  vec4 bottom = mix(imageLoad(aoHistory, ivec2(p0.x, p1.y)), imageLoad(aoHistory, p1), f.x);
+  return mix(top, bottom, f.y);
+}
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
   vec4 current = imageLoad(aoCurrent, pixel);
-  float dist = texelFetch(viewDistance, pixel, 0).r;
+  float dist = imageLoad(viewDistance, pixel).r;
   if (!kHasHistory || dist <= 0.0) {  // no history must leave the current value bit for bit
     imageStore(aoOut, pixel, current);
     return;
@@ -36,13 +50,13 @@ void main() {
   }
   if (accepted) {  // layer 2: the surface seen there last frame must be this one
     ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
-    accepted = depthConsistent(expected, texelFetch(previousDistance, nearest, 0).r, pc.depthTolerance);
+    accepted = depthConsistent(expected, imageLoad(previousDistance, nearest).r, pc.depthTolerance);
   }
   if (!accepted) {
     imageStore(aoOut, pixel, current);
     return;
   }
-  vec4 history = textureLod(aoHistory, (previousPixel + 0.5) * pc.invSize, 0.0);
+  vec4 history = historyBilinear(previousPixel);
   // Layer 3: clamp history AO into the current 3x3 neighbourhood (bent normals are not clamped).
   float currentAo = kBent ? current.w : current.r;
   float lo = currentAo, hi = currentAo;

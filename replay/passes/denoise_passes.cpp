@@ -11,23 +11,45 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
   bool bent = settings.bent != 0;
   shader::SpatialConstants constants{};
   constants.size = {camera.width, camera.height};
-  auto blurred = graph.createImage("ao_blurred", {uint32_t(camera.width), uint32_t(camera.height), aoFormat(bent)});
+  uint32_t w = uint32_t(camera.width), h = uint32_t(camera.height);
+  auto columnSum = graph.createImage("ao_column_sum", {w, h, aoFormat(bent)});
+  auto columnWeight = graph.createImage("ao_column_weight", {w, h, VK_FORMAT_R16_SFLOAT});
+  auto blurred = graph.createImage("ao_blurred", {w, h, aoFormat(bent)});
+  constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  // The 5x5 blur in two dispatches, vertical legs then rows (why: shaders/spatial_denoise.h).
+  graph.addPass(
+      "spatial_columns",
+      [&](graph::PassBuilder& b) {
+        b.read(ao, graph::Access::StorageRead);
+        b.read(distance, graph::Access::StorageRead);
+        b.write(columnSum);
+        b.write(columnWeight);
+      },
+      [&pipelines, bent, constants, ao, distance, columnSum, columnWeight](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.spatialColumns(bent),
+                        {{ao, kStorage}, {distance, kStorage}, {columnSum, kStorage}, {columnWeight, kStorage}}, &constants,
+                        uint32_t(constants.size.x), uint32_t(constants.size.y));
+      });
   graph.addPass(
       "spatial",
       [&](graph::PassBuilder& b) {
         b.read(ao, graph::Access::StorageRead);
         b.read(distance, graph::Access::StorageRead);
+        b.read(columnSum, graph::Access::StorageRead);
+        b.read(columnWeight, graph::Access::StorageRead);
         b.write(blurred);
       },
-      [&pipelines, bent, constants, ao, distance, blurred](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.spatial(bent), {{ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {blurred, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
-                        uint32_t(constants.size.x), uint32_t(constants.size.y));
+      [&pipelines, bent, constants, ao, distance, columnSum, columnWeight, blurred](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.spatial(bent),
+                        {{ao, kStorage}, {distance, kStorage}, {columnSum, kStorage}, {columnWeight, kStorage}, {blurred, kStorage}},
+                        &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return blurred;
 }
 
 graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                                   const AoSettings& settings, const TemporalInputs& in) {
+  constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   bool bent = settings.bent != 0;
   bool hasHistory = in.historyAo != graph::kNoResource && in.historyDistance != graph::kNoResource;
   auto params = projectionParams(camera.projection, camera.width, camera.height);
@@ -41,26 +63,26 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
   constants.size = {camera.width, camera.height};
   constants.blend = settings.temporal;
   constants.depthTolerance = shader::kTemporalDepthTolerance;
-  // Without history the shader variant never reads bindings 2-3; the current distance (sampled,
-  // like binding 3 expects) stands in so every binding is valid and no pass declares a read of a
-  // history image that does not exist.
-  graph::ResourceId historyAo = hasHistory ? in.historyAo : in.distance;
+  // Without history the shader variant never reads bindings 2-3; the current AO and distance (of
+  // the formats those bindings declare) stand in so every binding is valid and no pass declares a
+  // read of a history image that does not exist.
+  graph::ResourceId historyAo = hasHistory ? in.historyAo : in.current;
   graph::ResourceId historyDistance = hasHistory ? in.historyDistance : in.distance;
   graph.addPass(
       "temporal",
       [&](graph::PassBuilder& b) {
         b.read(in.current, graph::Access::StorageRead);
-        b.read(in.distance);
+        b.read(in.distance, graph::Access::StorageRead);
         if (hasHistory) {
-          b.read(in.historyAo);
-          b.read(in.historyDistance);
+          b.read(in.historyAo, graph::Access::StorageRead);
+          b.read(in.historyDistance, graph::Access::StorageRead);
         }
         b.write(in.target);
       },
       [&pipelines, bent, hasHistory, constants, in, historyAo, historyDistance](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.temporal(bent, hasHistory),
-                        {{in.current, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {in.distance}, {historyAo, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, hasHistory},
-                         {historyDistance}, {in.target, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                        {{in.current, kStorage}, {in.distance, kStorage}, {historyAo, kStorage},
+                         {historyDistance, kStorage}, {in.target, kStorage}},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return in.target;

@@ -65,10 +65,20 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
   return it->second;
 }
 
+const ComputePipeline& PassPipelines::spatialColumns(bool bent) {
+  auto [it, fresh] = pipelines_.try_emplace(fmt::format("spatial_columns:{}", bent));
+  if (fresh) {
+    VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage};  // every image a storage image
+    auto code = bent ? spirv::spatial_columns_rgba16f_code() : spirv::spatial_columns_r16f_code();  // = aoFormat(bent)
+    it->second = createComputePipeline(vk_, code, bindings, sizeof(shader::SpatialConstants), {});
+  }
+  return it->second;
+}
+
 const ComputePipeline& PassPipelines::spatial(bool bent) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("spatial:{}", bent));
   if (fresh) {
-    VkDescriptorType bindings[] = {kStorage, kStorage, kStorage};  // AO and distance read as storage images
+    VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage, kStorage};  // every image a storage image
     SpecializationValue spec[] = {{uint32_t(shader::kSpatialSpecBent), bent ? 1u : 0u}};
     auto code = bent ? spirv::spatial_denoise_rgba16f_code() : spirv::spatial_denoise_r16f_code();  // = aoFormat(bent)
     it->second = createComputePipeline(vk_, code, bindings, sizeof(shader::SpatialConstants), spec);
@@ -79,7 +89,7 @@ const ComputePipeline& PassPipelines::spatial(bool bent) {
 const ComputePipeline& PassPipelines::temporal(bool bent, bool hasHistory) {
   auto [it, fresh] = pipelines_.try_emplace(fmt::format("temporal:{}:{}", bent, hasHistory));
   if (fresh) {
-    VkDescriptorType bindings[] = {kStorage, kSampled, kSampled, kSampled, kStorage};  // current AO read as a storage image
+    VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage, kStorage};  // every image a storage image
     SpecializationValue spec[] = {{uint32_t(shader::kTemporalSpecBent), bent ? 1u : 0u},
                                   {uint32_t(shader::kTemporalSpecHistory), hasHistory ? 1u : 0u}};
     auto code = bent ? spirv::temporal_denoise_rgba16f_code() : spirv::temporal_denoise_r16f_code();  // = aoFormat(bent)

@@ -27,6 +27,7 @@ class PassPipelines {
   const ComputePipeline& reconstructNormals();
   const ComputePipeline& gtao(int slices, int steps, bool bent, bool viewSpaceNormals);
   const ComputePipeline& gtaoReference(int slices, bool bent, bool viewSpaceNormals);
+  const ComputePipeline& spatialColumns(bool bent);
   const ComputePipeline& spatial(bool bent);
   const ComputePipeline& temporal(bool bent, bool hasHistory);
 

@@ -70,7 +70,7 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
     addTemporalPass(g, pipelines, cam, settings, t);
     frame.notes["temporal"] = settings.temporal <= 0.0f ? "temporal=0" : "single-frame replay: no history";
   }
-  if (!settings.spatial) frame.notes["spatial"] = "spatial=0";
+  if (!settings.spatial) frame.notes["spatial"] = frame.notes["spatial_columns"] = "spatial=0";
   if (in.hasNormals) frame.notes["reconstruct_normals"] = "the capture has normals";
   addReadbackPass(g, frame.finalAo, *buffers.readback);
   return frame;

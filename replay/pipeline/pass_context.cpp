@@ -23,7 +23,7 @@ void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, s
   uint32_t binding = 0;
   for (const auto& d : images) {
     bool storage = d.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    VkSampler sampler = storage ? VK_NULL_HANDLE : (d.linearFilter ? ctx.vk.linearSampler : ctx.vk.nearestSampler);
+    VkSampler sampler = storage ? VK_NULL_HANDLE : ctx.vk.nearestSampler;
     infos.push_back({sampler, ctx.image(d.resource).view,
                      storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

@@ -21,12 +21,11 @@ struct PassContext {
 
 namespace aor {
 
-// One descriptor of a compute dispatch: sampled images use texelFetch/textureLod, storage images
-// are written or read with imageLoad.
+// One descriptor of a compute dispatch: sampled images use texelFetch (nearest sampler), storage
+// images are written or read with imageLoad.
 struct DispatchImage {
   graph::ResourceId resource;
   VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  bool linearFilter = false;
 };
 
 // Binds `pipeline`, pushes the descriptors (binding i = images[i]) and push constants, and

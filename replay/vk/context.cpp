@@ -237,14 +237,12 @@ void createContext(VulkanContext& ctx, const ContextOptions& options) {
   poolInfo.queueFamilyIndex = ctx.queueFamily;
   VK_CHECK(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &ctx.commandPool));
   ctx.nearestSampler = createSampler(ctx.device, VK_FILTER_NEAREST);
-  ctx.linearSampler = createSampler(ctx.device, VK_FILTER_LINEAR);
 }
 
 void destroyContext(VulkanContext& ctx) {
   if (ctx.device) {
     vkDeviceWaitIdle(ctx.device);
     vkDestroySampler(ctx.device, ctx.nearestSampler, nullptr);
-    vkDestroySampler(ctx.device, ctx.linearSampler, nullptr);
     vkDestroyCommandPool(ctx.device, ctx.commandPool, nullptr);
     vkDestroyDevice(ctx.device, nullptr);
   }

@@ -32,7 +32,6 @@ struct VulkanContext {
   uint32_t queueFamily = 0;
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkSampler nearestSampler = VK_NULL_HANDLE;
-  VkSampler linearSampler = VK_NULL_HANDLE;
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
   VkPhysicalDeviceMemoryProperties memoryProperties{};
   DeviceInfo info;

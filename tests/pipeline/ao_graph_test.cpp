@@ -69,7 +69,7 @@ Built build(const Case& c) {
 
 TEST(AoGraph, DefaultMultiFrameReplayRunsTheThreePassesWithHistory) {
   auto b = build({});
-  for (const char* pass : {"upload", "linearize_depth", "gtao", "spatial", "temporal", "readback"})
+  for (const char* pass : {"upload", "linearize_depth", "gtao", "spatial_columns", "spatial", "temporal", "readback"})
     EXPECT_TRUE(b.runs(pass)) << pass;
   EXPECT_GT(b.historyBytes(), 0u);
   EXPECT_TRUE(b.allocated("ao_history.previous"));
@@ -113,7 +113,10 @@ TEST(AoGraph, SpatialPassOnlyWithSpatialOne) {
   c.settings.spatial = 0;
   auto b = build(c);
   EXPECT_FALSE(b.runs("spatial"));
+  EXPECT_FALSE(b.runs("spatial_columns"));
   EXPECT_FALSE(b.allocated("ao_blurred"));
+  EXPECT_FALSE(b.allocated("ao_column_sum"));
+  EXPECT_FALSE(b.allocated("ao_column_weight"));
   EXPECT_TRUE(b.runs("temporal"));
 }
 

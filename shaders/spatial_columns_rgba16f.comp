@@ -1,0 +1,5 @@
+#version 450
+// spatial_columns reading AO as a rgba16f storage image (bent=1: bent.xyz, visibility).
+#extension GL_GOOGLE_include_directive : require
+#define AOR_AO_FORMAT rgba16f
+#include "spatial_columns_body.glsl"
