@@ -88,8 +88,10 @@ bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) sl
   return true;
 }
 
-// Integrates one slice whose horizon cosines were found, into the pixel's running sums.
-void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosNeg, vec3 viewDir,
+// Integrates one slice whose horizon cosines were found, into the pixel's running sums. The bent
+// normal is summed in the frame where the view vector is +Z: the rotation to view space is linear,
+// so gtaoResolve applies it once per pixel instead of once per slice.
+void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosNeg,
                          AOR_INOUT(float) visibility, AOR_INOUT(float) unoccluded, AOR_INOUT(vec3) bentSum) {
   float n = slice.n, cosN = slice.cosN, sinN = slice.sinN;
   // Horizons as angles from the view vector, limited to the hemisphere around the normal: with
@@ -110,7 +112,7 @@ void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosN
     vec2 terms = gtaoHorizonBentTerms(cosNeg, sinNeg, cosN, sinN) + gtaoHorizonBentTerms(cosPos, sinPos, cosN, sinN);
     vec2 b = vec2((terms.x + 16.0f * sinN) / 12.0f, (terms.y + 8.0f * cosN) / 12.0f);
     vec3 sliceBent = vec3(slice.direction.x * b.x, slice.direction.y * b.x, b.y);
-    bentSum += rotateZTo(viewDir, sliceBent) * slice.projectedLength;
+    bentSum += sliceBent * slice.projectedLength;
   }
 }
 
@@ -132,12 +134,13 @@ bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(GtaoCentre) c) {
 // slices instead of the slice count. Both tend to the same value as slices grow, but a single
 // unoccluded slice integrates to projLen * (cos n + n sin n), not 1, so dividing by the count
 // makes tilted planes scatter around 1 (0.92 at 30 degrees with 9 slices); the ratio is exact.
-float gtaoResolve(float visibility, float unoccluded, vec3 bentSum, vec3 normal, AOR_OUT(vec3) bentNormal) {
+float gtaoResolve(float visibility, float unoccluded, vec3 bentSum, vec3 viewDir, vec3 normal, AOR_OUT(vec3) bentNormal) {
   visibility = unoccluded > 0.0f ? clamp(visibility / unoccluded, 0.0f, 1.0f) : 1.0f;
   if (pc.power != 1.0f) visibility = pow(visibility, pc.power);  // pow(x, 1) is exp2(log2(x)) on some devices
   if (kBent) {
-    float bentLength = length(bentSum);
-    bentNormal = bentLength > 1e-6f ? bentSum / bentLength : normal;
+    vec3 bentView = rotateZTo(viewDir, bentSum);
+    float bentLength = length(bentView);
+    bentNormal = bentLength > 1e-6f ? bentView / bentLength : normal;
   }
   return visibility;
 }
@@ -171,7 +174,7 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
       horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
                                                               slice.cosN, slice.sinN, -1.0f, slice.lowCosNeg));
     }
-    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, c.viewDir, visibility, unoccluded, bentSum);
+    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, visibility, unoccluded, bentSum);
   }
-  return gtaoResolve(visibility, unoccluded, bentSum, c.normal, bentNormal);
+  return gtaoResolve(visibility, unoccluded, bentSum, c.viewDir, c.normal, bentNormal);
 }

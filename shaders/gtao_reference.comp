@@ -56,9 +56,9 @@ float referencePixel(ivec2 pixel, out vec3 bentNormal) {
       horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
                                                               slice.cosN, slice.sinN, -1.0, slice.lowCosNeg));
     }
-    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, c.viewDir, visibility, unoccluded, bentSum);
+    gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, visibility, unoccluded, bentSum);
   }
-  return gtaoResolve(visibility, unoccluded, bentSum, c.normal, bentNormal);
+  return gtaoResolve(visibility, unoccluded, bentSum, c.viewDir, c.normal, bentNormal);
 }
 
 void main() {

@@ -17,11 +17,11 @@ graph::ResourceId addLinearizeDepthPass(graph::RenderGraph& graph, PassPipelines
   graph.addPass(
       "linearize_depth",
       [&](graph::PassBuilder& b) {
-        b.read(depth);
+        b.read(depth, graph::Access::StorageRead);
         b.write(distanceTarget);
       },
       [&pipelines, constants, depth, distanceTarget](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.linearizeDepth(), {{depth}, {distanceTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+        dispatchCompute(ctx, pipelines.linearizeDepth(), {{depth, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {distanceTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return distanceTarget;

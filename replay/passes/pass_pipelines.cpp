@@ -24,7 +24,7 @@ VkFormat aoFormat(bool bent) { return bent ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_
 const ComputePipeline& PassPipelines::linearizeDepth() {
   auto [it, fresh] = pipelines_.try_emplace("linearize");
   if (fresh) {
-    VkDescriptorType bindings[] = {kSampled, kStorage};
+    VkDescriptorType bindings[] = {kStorage, kStorage};  // depth read as a storage image
     it->second = createComputePipeline(vk_, spirv::linearize_depth_code(), bindings, sizeof(shader::LinearizeConstants), {});
   }
   return it->second;
