@@ -4,6 +4,8 @@
 # settings, S with one extra GTAO slice (a real slowdown). compare A B should say `same` (no exit 1);
 # compare A S should say `slower` (exit 1).
 #   bash bench/compare_runs.sh BUILD_DIR OUT_DIR [PAIRS=20] [extra `aoreplay run` args...]
+# COMPARE_ARGS (words split on spaces) go to `aoreplay compare`, e.g.
+#   COMPARE_ARGS='--ignore ^(upload|readback)$'   to judge the compute passes only.
 set -euo pipefail
 build=${1:?build dir}
 out=${2:?output dir}
@@ -12,6 +14,7 @@ shift $(( $# < 3 ? $# : 3 ))
 aoreplay="$build/replay/aoreplay"
 capture="$(dirname "$0")/../captures/boxes-orbit"
 run_args=(--frames 0:4 --repeat 10 --warmup 2 --no-images "$@")
+read -ra compare_args <<< "${COMPARE_ARGS:-}"
 mkdir -p "$out"
 
 replay() {  # name, extra settings...
@@ -25,9 +28,9 @@ for i in $(seq 1 "$pairs"); do
   replay "b$i"
   replay "s$i" --set slices=4
   set +e
-  "$aoreplay" compare "$out/a$i/report.json" "$out/b$i/report.json" --json "$out/same$i.json" >"$out/same$i.txt"
+  "$aoreplay" compare "$out/a$i/report.json" "$out/b$i/report.json" "${compare_args[@]}" --json "$out/same$i.json" >"$out/same$i.txt"
   same_rc=$?
-  "$aoreplay" compare "$out/a$i/report.json" "$out/s$i/report.json" --json "$out/slow$i.json" >"$out/slow$i.txt"
+  "$aoreplay" compare "$out/a$i/report.json" "$out/s$i/report.json" "${compare_args[@]}" --json "$out/slow$i.json" >"$out/slow$i.txt"
   slow_rc=$?
   set -e
   [ "$same_rc" -eq 1 ] && false_alarms=$((false_alarms + 1))
