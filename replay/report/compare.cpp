@@ -71,6 +71,15 @@ double msPerUnit(const std::string& unit, const fs::path& path, const std::strin
   throw InputError(path.string(), std::nullopt, field, fmt::format("unknown time unit \"{}\"", unit));
 }
 
+// Google Benchmark names a benchmark with repetitions ".../repeats:N/...": without that segment a
+// baseline taken with one --reps still matches a run taken with another.
+std::string withoutRepetitionCount(std::string name) {
+  auto at = name.find("/repeats:");
+  if (at == std::string::npos) return name;
+  auto end = name.find('/', at + 1);
+  return name.erase(at, end == std::string::npos ? std::string::npos : end - at);
+}
+
 // Google Benchmark JSON: every repetition is an entry with run_type "iteration"; aggregates
 // (mean, median, stddev, cv) are skipped because the test needs the samples themselves.
 TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
@@ -82,7 +91,7 @@ TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
     if (b.value("run_type", "iteration") != "iteration") continue;
     if (b.value("error_occurred", false))
       throw InputError(path.string(), std::nullopt, prefix, fmt::format("benchmark failed: {}", b.value("error_message", "")));
-    std::string name = b.value("run_name", b.value("name", ""));
+    std::string name = withoutRepetitionCount(b.value("run_name", b.value("name", "")));
     if (name.empty()) throw InputError(path.string(), std::nullopt, prefix + ".name", "missing");
     double scale = msPerUnit(b.value("time_unit", "ns"), path, prefix + ".time_unit");
     double value = positiveNumber(b.contains("real_time") ? b["real_time"] : nlohmann::json(), path, prefix + ".real_time") * scale;

@@ -193,6 +193,23 @@ TEST(CompareInput, GoogleBenchmarkJsonUsesIterationsInMilliseconds) {
   EXPECT_EQ(samples[0].second, (std::vector<double>{1.5, 2.5}));
 }
 
+TEST(CompareInput, BenchmarkNamesMatchAcrossRepetitionCounts) {
+  auto bench = [&](const char* file, const char* runName, int n) {
+    nlohmann::json entries = nlohmann::json::array();
+    for (int i = 0; i < n; ++i)
+      entries.push_back({{"name", runName}, {"run_name", runName}, {"run_type", "iteration"}, {"real_time", 1.0 + i}, {"time_unit", "ms"}});
+    return loadTimingSamples(writeFile(file, {{"context", {}}, {"benchmarks", entries}}));
+  };
+  auto ten = bench("ten.json", "gtao/s3x3/640x360/iterations:1/repeats:10/manual_time", 10);
+  auto twenty = bench("twenty.json", "gtao/s3x3/640x360/iterations:1/repeats:20/manual_time", 20);
+  auto last = bench("last.json", "gtao/s3x3/640x360/repeats:5", 5);
+  ASSERT_EQ(ten.size(), 1u);
+  EXPECT_EQ(ten[0].first, "gtao/s3x3/640x360/iterations:1/manual_time");
+  EXPECT_EQ(twenty[0].first, ten[0].first);
+  EXPECT_EQ(twenty[0].second.size(), 20u);
+  EXPECT_EQ(last[0].first, "gtao/s3x3/640x360");
+}
+
 TEST(CompareInput, BadInputNamesTheFileAndField) {
   auto old = writeFile("old.json", {{"tool", "aoreplay"}, {"passes", {{{"name", "gtao"}, {"gpu_ms", {{"median", 1}}}}}}});
   try {
