@@ -68,6 +68,7 @@ void GraphExecutor::record(const graph::RenderGraph& graph, const graph::Compile
     }
     vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, query++);
     const auto& decl = graph.passes()[pass.pass];
+    context.pass = &decl;
     if (decl.execute) decl.execute(context);
     vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, query++);
   }

@@ -11,6 +11,11 @@ const GpuImage& PassContext::image(ResourceId id) const {
   return *images[id];
 }
 
+VkImageLayout PassContext::layout(ResourceId id) const {
+  if (!pass) throw std::logic_error("no pass is being recorded");
+  return requiredState(*pass, id).layout;
+}
+
 }  // namespace aor::graph
 
 namespace aor {
@@ -24,8 +29,7 @@ void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, s
   for (const auto& d : images) {
     bool storage = d.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     VkSampler sampler = storage ? VK_NULL_HANDLE : ctx.vk.nearestSampler;
-    infos.push_back({sampler, ctx.image(d.resource).view,
-                     storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+    infos.push_back({sampler, ctx.image(d.resource).view, ctx.layout(d.resource)});
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstBinding = binding++;
     write.descriptorCount = 1;

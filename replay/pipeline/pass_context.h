@@ -14,7 +14,10 @@ struct PassContext {
   VulkanContext& vk;
   VkCommandBuffer cmd;
   std::vector<const GpuImage*> images;  // indexed by ResourceId; null for unused resources
+  const PassDecl* pass = nullptr;       // the pass being recorded
   const GpuImage& image(ResourceId id) const;
+  // The layout the graph's barriers left `id` in for this pass: what its descriptors must say.
+  VkImageLayout layout(ResourceId id) const;
 };
 
 }  // namespace aor::graph
