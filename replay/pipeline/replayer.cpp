@@ -82,13 +82,21 @@ const std::vector<float>& halfToFloat() {
   return table;
 }
 
-FrameOutput readResult(const GpuBuffer& readback, int index, int width, int height, bool bent) {
+// The read-back is copied out of the mapped buffer on the replay thread (the next frame overwrites
+// it) and converted to floats by the frame's sink worker, off the critical path.
+std::vector<uint16_t> copyReadback(const GpuBuffer& readback, int width, int height, bool bent) {
+  size_t count = size_t(width) * size_t(height) * (bent ? 4 : 1);
+  const auto* halves = static_cast<const uint16_t*>(readback.mapped);
+  return std::vector<uint16_t>(halves, halves + count);
+}
+
+FrameOutput decodeReadback(const std::vector<uint16_t>& raw, int index, int width, int height, bool bent) {
   FrameOutput out;
   out.index = index;
   out.width = width;
   out.height = height;
   size_t pixels = size_t(width) * size_t(height);
-  const auto* halves = static_cast<const uint16_t*>(readback.mapped);
+  const uint16_t* halves = raw.data();
   const float* toFloat = halfToFloat().data();
   out.visibility.resize(pixels);
   if (bent) out.bent.resize(pixels * 3);
@@ -197,12 +205,6 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
   result.settings = settings;
   auto replayStart = Clock::now();
 
-  PassPipelines pipelines(vk);
-  GraphResources resources(vk);
-  GraphExecutor executor(vk);
-  StagingBuffers staging(vk, capture, bent);
-  AoFrameBuffers buffers{&staging.depth, capture.hasNormals ? &staging.normals : nullptr, &staging.readback};
-
   auto decode = [&capture, temporalWanted](int index) {
     auto t = Clock::now();
     DecodedFrame d;
@@ -213,7 +215,13 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     d.decodeMs = msSince(t);
     return d;
   };
-  auto next = std::async(std::launch::async, decode, begin);
+  auto next = std::async(std::launch::async, decode, begin);  // overlaps the set-up below
+
+  PassPipelines pipelines(vk);
+  GraphResources resources(vk);
+  GraphExecutor executor(vk);
+  StagingBuffers staging(vk, capture, bent);
+  AoFrameBuffers buffers{&staging.depth, capture.hasNormals ? &staging.normals : nullptr, &staging.readback};
   HistoryTracker history;
   // A frame's sink (image writing, analysis) runs on a worker thread while the next frame is
   // uploaded and run on the GPU; sinks run one at a time, in frame order. Its time is the frame's
@@ -261,23 +269,27 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     record.gpuWallMs = msSince(t);
 
     t = Clock::now();
-    FrameOutput output = readResult(staging.readback, index, capture.width, capture.height, bent);
-    output.gbuffer = &decoded.gbuffer;
-    output.historyValid = record.historyValid;
-    output.resetReason = record.resetReason;
+    std::vector<uint16_t> readback = sink ? copyReadback(staging.readback, capture.width, capture.height, bent)
+                                          : std::vector<uint16_t>();
     record.readbackMs = msSince(t);
 
     if (temporalWanted) resources.swapHistory();
     history = {true, capture.width, capture.height, settings, camera, decoded.medianDistance};
     finishPendingSink();
+    bool historyValid = record.historyValid;
+    std::string resetReason = record.resetReason;
     result.frames.push_back(std::move(record));
     if (sink) {
-      auto job = std::make_shared<std::pair<DecodedFrame, FrameOutput>>(std::move(decoded), std::move(output));
-      job->second.gbuffer = &job->first.gbuffer;
+      auto job = std::make_shared<DecodedFrame>(std::move(decoded));
       pendingRecord = result.frames.size() - 1;
-      pendingSink = std::async(std::launch::async, [&sink, job] {
+      pendingSink = std::async(std::launch::async, [&sink, job, raw = std::move(readback), index, &capture, bent,
+                                                    valid = historyValid, reason = std::move(resetReason)] {
         auto start = Clock::now();
-        sink(job->second);
+        FrameOutput output = decodeReadback(raw, index, capture.width, capture.height, bent);
+        output.gbuffer = &job->gbuffer;
+        output.historyValid = valid;
+        output.resetReason = reason;
+        sink(output);
         return msSince(start);
       });
     }
