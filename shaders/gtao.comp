@@ -9,6 +9,7 @@ layout(constant_id = kGtaoSpecSlices) const int kSlices = 3;
 layout(constant_id = kGtaoSpecSteps) const int kSteps = 3;
 layout(constant_id = kGtaoSpecBent) const bool kBent = true;
 layout(constant_id = kGtaoSpecViewNormals) const bool kViewNormals = false;
+layout(constant_id = kGtaoSpecThin) const bool kThin = false;
 
 layout(push_constant, scalar) uniform Push { GtaoConstants pc; };
 layout(set = 0, binding = 0, r32f) uniform readonly image2D viewDistance;  // linear distance, sky <= 0 (storage read: cheaper than a sampler on lavapipe)

@@ -1,6 +1,6 @@
 // GTAO horizon search and integration for one pixel (seed 000 pass 1), shared by gtao.comp and the
 // CPU mirror. The includer provides:
-//   GtaoConstants pc; int kSlices, kSteps; bool kBent;
+//   GtaoConstants pc; int kSlices, kSteps; bool kBent; bool kThin (pc.thin > 0);
 //   float gtaoLoadDistance(ivec2 pixel)      linear view distance, <= 0 for sky/invalid; pixel in range
 //   vec3  gtaoLoadViewNormal(ivec2 pixel)    view-space unit normal (may be zero for invalid input)
 // Returns visibility in [0,1] and the bent normal (view space, unit) through `bentNormal`.
@@ -36,16 +36,19 @@ float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLe
   float dist = gtaoLoadDistance(fetched);
   vec3 delta = gtaoViewPosition(fetched, dist) - c.position;
   float len2 = dot(delta, delta);
+  float invLen = inversesqrt(len2);
   // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
-  // centre sooner, so thin objects do not cast a full horizon.
-  float falloffDist = sqrt(c.thinStretch > 0.0f ? len2 + delta.z * delta.z * c.thinStretch : len2);
+  // centre sooner, so thin objects do not cast a full horizon. Without it the falloff distance is
+  // the length itself, and one inverse square root serves both (a square root less per sample).
+  float falloffDist = kThin ? sqrt(len2 + delta.z * delta.z * c.thinStretch) : len2 * invLen;
   float weight = clamp((pc.radius - falloffDist) * c.invFadeWidth, 0.0f, 1.0f);
-  float sinE = clamp(dot(delta, c.normal) * inversesqrt(len2) * invProjectedLength, -1.0f, 1.0f);
+  float sinE = clamp(dot(delta, c.normal) * invLen * invProjectedLength, -1.0f, 1.0f);
   float cosE = sqrt(1.0f - sinE * sinE);
   // side +1: cos(n + pi/2 - e); side -1: cos(n - pi/2 + e)
   float sampleCos = cosN * sinE - side * sinN * cosE;
-  // weight > 0 also bounds len2 by radius^2: no overflowing distance gets through.
-  bool usable = fetched == samplePixel && dist > 0.0f && weight > 0.0f && len2 > 0.0f;
+  // falloffDist < radius is weight > 0, false for NaN (len2 = 0 or Inf makes len2 * invLen NaN),
+  // and bounds len2 by radius^2: no overflowing distance gets through.
+  bool usable = fetched == samplePixel && dist > 0.0f && falloffDist < pc.radius && len2 > 0.0f;
   return usable ? mix(lowCos, sampleCos, weight) : lowCos;
 }
 

@@ -13,6 +13,7 @@ layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kGtaoSpecSlices) const int kSlices = 32;
 layout(constant_id = kGtaoSpecBent) const bool kBent = true;
 layout(constant_id = kGtaoSpecViewNormals) const bool kViewNormals = false;
+layout(constant_id = kGtaoSpecThin) const bool kThin = false;
 const int kSteps = 1;  // gtaoPixel (unused here) needs it
 
 layout(push_constant, scalar) uniform Push { GtaoConstants pc; };

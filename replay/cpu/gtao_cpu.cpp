@@ -18,6 +18,7 @@ struct GtaoCpuPixel {
   int kSlices;
   int kSteps;
   bool kBent;
+  bool kThin;
   const std::vector<float>* distance;
   const std::vector<vec3>* viewNormals;
 
@@ -48,7 +49,7 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Ao
     normals[i] = (len2 > 1e-12f && !std::isinf(len2)) ? n * glm::inversesqrt(len2) : glm::vec3(0.0f);
   }
   shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
-                             &distance, &normals};
+                             settings.thin > 0.0f, &distance, &normals};
   CpuAoImage out;
   out.width = camera.width;
   out.height = camera.height;

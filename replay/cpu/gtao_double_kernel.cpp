@@ -33,6 +33,7 @@ struct GtaoDoublePixel {
   int kSlices;
   int kSteps;
   bool kBent;
+  bool kThin;
   const DoubleGtaoInputs* in;
 
   size_t index(ivec2 pixel) const { return size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x); }
@@ -67,7 +68,7 @@ double gtaoPixelDouble(const DoubleGtaoInputs& inputs, glm::ivec2 pixel, glm::dv
   pc.power = inputs.power;
   pc.frameIndex = inputs.frameIndex;
   pc.viewPerPixel = inputs.viewPerPixel;
-  shader_double::GtaoDoublePixel kernel{pc, inputs.slices, inputs.steps, inputs.bent, &inputs};
+  shader_double::GtaoDoublePixel kernel{pc, inputs.slices, inputs.steps, inputs.bent, pc.thin > 0, &inputs};
   return kernel.gtaoPixel(pixel, bentNormal);
 }
 

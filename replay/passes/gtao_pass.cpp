@@ -37,8 +37,9 @@ graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipeline
         b.read(inputs.normals, graph::Access::StorageRead);
         b.write(ao);
       },
-      [&pipelines, slices = settings.slices, steps = settings.steps, bent, constants, inputs, ao](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals), {{inputs.distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {inputs.normals, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+      [&pipelines, slices = settings.slices, steps = settings.steps, bent, thin = settings.thin > 0.0f, constants, inputs,
+       ao](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals, thin), {{inputs.distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {inputs.normals, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return ao;

@@ -16,8 +16,8 @@ graph::ResourceId addGtaoReferencePass(graph::RenderGraph& graph, PassPipelines&
         b.read(inputs.normals);
         b.write(ao);
       },
-      [&pipelines, bent, constants, inputs, ao](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.gtaoReference(kReferenceSlices, bent, inputs.viewSpaceNormals),
+      [&pipelines, bent, thin = settings.thin > 0.0f, constants, inputs, ao](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.gtaoReference(kReferenceSlices, bent, inputs.viewSpaceNormals, thin),
                         {{inputs.distance}, {inputs.normals}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });

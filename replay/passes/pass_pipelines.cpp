@@ -40,26 +40,28 @@ const ComputePipeline& PassPipelines::reconstructNormals() {
   return it->second;
 }
 
-const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals) {
-  auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals));
+const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin) {
+  auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao:{}:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals, thin));
   if (fresh) {
     VkDescriptorType bindings[] = {kStorage, kStorage, kStorage};  // distance and normals read as storage images
     SpecializationValue spec[] = {{uint32_t(shader::kGtaoSpecSlices), uint32_t(slices)},
                                   {uint32_t(shader::kGtaoSpecSteps), uint32_t(steps)},
                                   {uint32_t(shader::kGtaoSpecBent), bent ? 1u : 0u},
-                                  {uint32_t(shader::kGtaoSpecViewNormals), viewSpaceNormals ? 1u : 0u}};
+                                  {uint32_t(shader::kGtaoSpecViewNormals), viewSpaceNormals ? 1u : 0u},
+                                  {uint32_t(shader::kGtaoSpecThin), thin ? 1u : 0u}};
     it->second = createComputePipeline(vk_, spirv::gtao_code(), bindings, sizeof(shader::GtaoConstants), spec);
   }
   return it->second;
 }
 
-const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool viewSpaceNormals) {
-  auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao_reference:{}:{}:{}", slices, bent, viewSpaceNormals));
+const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool viewSpaceNormals, bool thin) {
+  auto [it, fresh] = pipelines_.try_emplace(fmt::format("gtao_reference:{}:{}:{}:{}", slices, bent, viewSpaceNormals, thin));
   if (fresh) {
     VkDescriptorType bindings[] = {kSampled, kSampled, kStorage};
     SpecializationValue spec[] = {{uint32_t(shader::kGtaoSpecSlices), uint32_t(slices)},
                                   {uint32_t(shader::kGtaoSpecBent), bent ? 1u : 0u},
-                                  {uint32_t(shader::kGtaoSpecViewNormals), viewSpaceNormals ? 1u : 0u}};
+                                  {uint32_t(shader::kGtaoSpecViewNormals), viewSpaceNormals ? 1u : 0u},
+                                  {uint32_t(shader::kGtaoSpecThin), thin ? 1u : 0u}};
     it->second = createComputePipeline(vk_, spirv::gtao_reference_code(), bindings, sizeof(shader::GtaoConstants), spec);
   }
   return it->second;

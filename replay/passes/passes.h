@@ -25,8 +25,8 @@ class PassPipelines {
   PassPipelines& operator=(const PassPipelines&) = delete;
   const ComputePipeline& linearizeDepth();
   const ComputePipeline& reconstructNormals();
-  const ComputePipeline& gtao(int slices, int steps, bool bent, bool viewSpaceNormals);
-  const ComputePipeline& gtaoReference(int slices, bool bent, bool viewSpaceNormals);
+  const ComputePipeline& gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin);
+  const ComputePipeline& gtaoReference(int slices, bool bent, bool viewSpaceNormals, bool thin);
   const ComputePipeline& spatialColumns(bool bent);
   const ComputePipeline& spatial(bool bent);
   const ComputePipeline& temporal(bool bent, bool hasHistory);
