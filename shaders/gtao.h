@@ -48,13 +48,14 @@ AOR_FUNC vec2 gtaoNoise(ivec2 pixel, uint frameIndex) {
 }
 
 // Weight of a horizon sample at view-space distance `dist`: 1 inside radius*(1-falloffRange),
-// fading linearly to 0 at the radius. falloffRange = 0 gives a hard cut-off at the radius.
+// fading linearly to 0 at the radius over the fade width. falloffRange = 0 gives a hard cut-off
+// at the radius. The shader passes 1 / gtaoFadeWidth, computed once per pixel.
 AOR_FUNC float gtaoFadeWidth(float radius, float falloffRange) {
   return max(falloffRange * radius, 1e-6f * radius);
 }
 
-AOR_FUNC float gtaoFalloffWeight(float dist, float radius, float falloffRange) {
-  return clamp((radius - dist) / gtaoFadeWidth(radius, falloffRange), 0.0f, 1.0f);
+AOR_FUNC float gtaoFalloffWeight(float dist, float radius, float invFadeWidth) {
+  return clamp((radius - dist) * invFadeWidth, 0.0f, 1.0f);
 }
 
 // Cosine-weighted visibility of one side of a slice (GTAO paper eq. 10, seed 000 inner_integral).
@@ -66,6 +67,13 @@ AOR_FUNC float gtaoInnerIntegral(float h, float n) {
 // measured from the view vector and positive; n is the projected normal's angle.
 AOR_FUNC float gtaoSliceVisibility(float h1, float h2, float n) {
   return gtaoInnerIntegral(h1, n) + gtaoInnerIntegral(h2, -n);
+}
+
+// Horizon cosine of the tangent plane on one side of a slice (side +1: cos(n + pi/2) = -sin n;
+// side -1: cos(n - pi/2) = sin n): where every horizon search starts, and what a sample that
+// occludes nothing contributes.
+AOR_FUNC float gtaoTangentHorizonCos(float sinN, float side) {
+  return -side * sinN;
 }
 
 // The slice visibility with both horizons on the tangent plane (h = n +- pi/2): cos n + n sin n.

@@ -16,7 +16,7 @@ struct GtaoCentre {
   vec3 viewDir;
   vec3 normal;
   float screenRadius;   // pixels
-  float invFadeWidth;   // 1 / width of the falloff ramp (gtaoFalloffWeight)
+  float invFadeWidth;   // 1 / gtaoFadeWidth
   float thinStretch;    // (1 + thin)^2 - 1: the thin heuristic's extra weight on the depth component
 };
 
@@ -31,7 +31,8 @@ struct GtaoCentre {
 // Branch-free on purpose: a CPU device (lavapipe) runs both sides of every branch anyway, and the
 // final select drops whatever an unusable sample computed (NaN included).
 float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLength, float cosN, float sinN,
-                           float side, float lowCos) {
+                           float side) {
+  float lowCos = gtaoTangentHorizonCos(sinN, side);
   ivec2 fetched = clamp(samplePixel, ivec2(0), pc.size - 1);
   float dist = gtaoLoadDistance(fetched);
   vec3 delta = gtaoViewPosition(fetched, dist) - c.position;
@@ -41,7 +42,7 @@ float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLe
   // centre sooner, so thin objects do not cast a full horizon. Without it the falloff distance is
   // the length itself, and one inverse square root serves both (a square root less per sample).
   float falloffDist = kThin ? sqrt(len2 + delta.z * delta.z * c.thinStretch) : len2 * invLen;
-  float weight = clamp((pc.radius - falloffDist) * c.invFadeWidth, 0.0f, 1.0f);
+  float weight = gtaoFalloffWeight(falloffDist, pc.radius, c.invFadeWidth);
   float sinE = clamp(dot(delta, c.normal) * invLen * invProjectedLength, -1.0f, 1.0f);
   float cosE = sqrt(1.0f - sinE * sinE);
   // side +1: cos(n + pi/2 - e); side -1: cos(n - pi/2 + e)
@@ -53,13 +54,11 @@ float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLe
 }
 
 // What every slice needs: its view-space direction and the projected normal's angle n (with cos
-// and sin) in the slice plane, plus the tangent-plane horizons on both sides.
+// and sin) in the slice plane.
 struct GtaoSlice {
   vec3 direction;
   float projectedLength, invProjectedLength;
   float n, cosN, sinN;
-  float lowCosPos;  // cos(n + pi/2)
-  float lowCosNeg;  // cos(n - pi/2)
 };
 
 // False when the normal lies along the slice axis: such a slice sees nothing.
@@ -86,8 +85,6 @@ bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) sl
   slice.cosN = facesViewer ? clamp(normalAlong * slice.invProjectedLength, 0.0f, 1.0f) : 0.0f;
   slice.n = facesViewer ? signN * atan(abs(normalAcross), normalAlong) : signN * kHalfPi;
   slice.sinN = facesViewer ? clamp(normalAcross * slice.invProjectedLength, -1.0f, 1.0f) : signN;
-  slice.lowCosPos = -slice.sinN;
-  slice.lowCosNeg = slice.sinN;
   return true;
 }
 
@@ -166,16 +163,16 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
                                      omega.x * sliceRotation.y + omega.y * sliceRotation.x);
     GtaoSlice slice;
     if (!gtaoSliceFrame(omega, c.viewDir, c.normal, slice)) continue;
-    float horizonCosPos = slice.lowCosPos;
-    float horizonCosNeg = slice.lowCosNeg;
+    float horizonCosPos = gtaoTangentHorizonCos(slice.sinN, 1.0f);
+    float horizonCosNeg = gtaoTangentHorizonCos(slice.sinN, -1.0f);
     for (int step = 0; step < kSteps; ++step) {
       float t = (float(step) + noise.y) / float(kSteps);
       float offsetPixels = t * t * c.screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
       ivec2 offset = ivec2(round(omega * offsetPixels));
       horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, c, slice.invProjectedLength,
-                                                              slice.cosN, slice.sinN, 1.0f, slice.lowCosPos));
+                                                              slice.cosN, slice.sinN, 1.0f));
       horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
-                                                              slice.cosN, slice.sinN, -1.0f, slice.lowCosNeg));
+                                                              slice.cosN, slice.sinN, -1.0f));
     }
     gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, visibility, unoccluded, bentSum);
   }

@@ -45,17 +45,17 @@ float referencePixel(ivec2 pixel, out vec3 bentNormal) {
     vec2 omega = vec2(cos(phi), sin(phi));
     GtaoSlice slice;
     if (!gtaoSliceFrame(omega, c.viewDir, c.normal, slice)) continue;
-    float horizonCosPos = slice.lowCosPos;
-    float horizonCosNeg = slice.lowCosNeg;
+    float horizonCosPos = gtaoTangentHorizonCos(slice.sinN, 1.0);
+    float horizonCosNeg = gtaoTangentHorizonCos(slice.sinN, -1.0);
     // One sample per crossed pixel: advance one pixel along the major axis per step.
     vec2 step = omega / max(abs(omega.x), abs(omega.y));
     int count = int(c.screenRadius / length(step)) + 1;
     for (int k = 1; k <= count; ++k) {
       ivec2 offset = ivec2(round(step * float(k)));
       horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, c, slice.invProjectedLength,
-                                                              slice.cosN, slice.sinN, 1.0, slice.lowCosPos));
+                                                              slice.cosN, slice.sinN, 1.0));
       horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
-                                                              slice.cosN, slice.sinN, -1.0, slice.lowCosNeg));
+                                                              slice.cosN, slice.sinN, -1.0));
     }
     gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, visibility, unoccluded, bentSum);
   }

@@ -14,9 +14,6 @@ layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
 layout(set = 0, binding = 2) uniform writeonly image2D columnSum;     // sum of gy * path * ao, AO format
 layout(set = 0, binding = 3) uniform writeonly image2D columnWeight;  // R16F: sum of gy * path (>= 1)
 
-const float kGaussian1D[kSpatialRadius + 1] = float[](1.0, exp(-1.0 / (2.0 * kSpatialSigma * kSpatialSigma)),
-                                                      exp(-4.0 / (2.0 * kSpatialSigma * kSpatialSigma)));
-
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;

@@ -30,6 +30,13 @@ AOR_FUNC float spatialGaussian(int dx, int dy) {
   return exp(-float(dx * dx + dy * dy) / (2.0f * kSpatialSigma * kSpatialSigma));
 }
 
+#ifndef __cplusplus
+// The separable factors spatialGaussian(k, 0) for k = 0..radius, as a constant table for the
+// unrolled shader loops.
+const float kGaussian1D[kSpatialRadius + 1] = float[](1.0, exp(-1.0 / (2.0 * kSpatialSigma * kSpatialSigma)),
+                                                      exp(-4.0 / (2.0 * kSpatialSigma * kSpatialSigma)));
+#endif
+
 // One leg of the path (from the centre outward, k = 1..radius along one axis): the running path
 // weight after the edge between the previous and the current tap's distance.
 AOR_FUNC float spatialPathStep(float path, float previousDistance, float currentDistance) {

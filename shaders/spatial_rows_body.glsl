@@ -15,9 +15,6 @@ layout(set = 0, binding = 2, AOR_AO_FORMAT) uniform readonly image2D columnSum;
 layout(set = 0, binding = 3, r16f) uniform readonly image2D columnWeight;
 layout(set = 0, binding = 4) uniform writeonly image2D aoOut;
 
-const float kGaussian1D[kSpatialRadius + 1] = float[](1.0, exp(-1.0 / (2.0 * kSpatialSigma * kSpatialSigma)),
-                                                      exp(-4.0 / (2.0 * kSpatialSigma * kSpatialSigma)));
-
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;

@@ -17,7 +17,6 @@ struct TemporalConstants {
   vec2 invSize;
   ivec2 size;
   float blend;              // history weight (seed 000 temporal_blend)
-  float depthTolerance;
 };
 
 // Previous-frame NDC of a previous-view-space point.

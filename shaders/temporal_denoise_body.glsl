@@ -1,5 +1,5 @@
 // Body of temporal_denoise_<format>.comp: each variant defines AOR_AO_FORMAT (the current AO
-// image's format qualifier) and includes this; see spatial_denoise_body.glsl for why.
+// image's format qualifier) and includes this; see spatial_columns_body.glsl for why.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "temporal_denoise.h"
@@ -50,7 +50,7 @@ void main() {
   }
   if (accepted) {  // layer 2: the surface seen there last frame must be this one
     ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
-    accepted = depthConsistent(expected, imageLoad(previousDistance, nearest).r, pc.depthTolerance);
+    accepted = depthConsistent(expected, imageLoad(previousDistance, nearest).r, kTemporalDepthTolerance);
   }
   if (!accepted) {
     imageStore(aoOut, pixel, current);
@@ -59,9 +59,10 @@ void main() {
   vec4 history = historyBilinear(previousPixel);
   // Layer 3: clamp history AO into the current 3x3 neighbourhood (bent normals are not clamped).
   float currentAo = kBent ? current.w : current.r;
-  float lo = currentAo, hi = currentAo;
+  float lo = currentAo, hi = currentAo;  // the centre is `current`, already loaded
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
+      if (dx == 0 && dy == 0) continue;
       ivec2 p = clamp(pixel + ivec2(dx, dy), ivec2(0), pc.size - 1);
       float v = kBent ? imageLoad(aoCurrent, p).w : imageLoad(aoCurrent, p).r;
       lo = min(lo, v);

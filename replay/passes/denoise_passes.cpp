@@ -62,7 +62,6 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
   constants.invSize = {1.0f / float(camera.width), 1.0f / float(camera.height)};
   constants.size = {camera.width, camera.height};
   constants.blend = settings.temporal;
-  constants.depthTolerance = shader::kTemporalDepthTolerance;
   // Without history the shader variant never reads bindings 2-3; the current AO and distance (of
   // the formats those bindings declare) stand in so every binding is valid and no pass declares a
   // read of a history image that does not exist.

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gtao.h"  // kGtaoFalloffRange
+
 namespace aor {
 
 // gtao: the real-time pipeline (GTAO -> spatial -> temporal). reference: the same GTAO integral
@@ -18,7 +20,7 @@ struct AoSettings {
   float radius = 1.0f;        // world units; default: the capture's scene.ao_radius, else 1
   int slices = 3;             // preset "high"
   int steps = 3;
-  float falloff = 0.615f;     // fraction of the radius over which sample weight fades; 0 = hard cut-off
+  float falloff = shader::kGtaoFalloffRange;  // fraction of the radius over which sample weight fades; 0 = hard cut-off
   float power = 1.0f;         // final exponent
   float thin = 0.0f;          // thin-occluder compensation
   int spatial = 1;            // 0/1
