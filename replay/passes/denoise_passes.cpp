@@ -15,7 +15,6 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
   auto columnSum = graph.createImage("ao_column_sum", {w, h, aoFormat(bent)});
   auto columnWeight = graph.createImage("ao_column_weight", {w, h, VK_FORMAT_R16_SFLOAT});
   auto blurred = graph.createImage("ao_blurred", {w, h, aoFormat(bent)});
-  constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   // The 5x5 blur in two dispatches, vertical legs then rows (why: shaders/spatial_denoise.h).
   graph.addPass(
       "spatial_columns",
@@ -27,7 +26,7 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
       },
       [&pipelines, bent, constants, ao, distance, columnSum, columnWeight](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.spatialColumns(bent),
-                        {{ao, kStorage}, {distance, kStorage}, {columnSum, kStorage}, {columnWeight, kStorage}}, &constants,
+                        {ao, distance, columnSum, columnWeight}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   graph.addPass(
@@ -41,7 +40,7 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
       },
       [&pipelines, bent, constants, ao, distance, columnSum, columnWeight, blurred](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.spatial(bent),
-                        {{ao, kStorage}, {distance, kStorage}, {columnSum, kStorage}, {columnWeight, kStorage}, {blurred, kStorage}},
+                        {ao, distance, columnSum, columnWeight, blurred},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return blurred;
@@ -49,7 +48,6 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
 
 graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                                   const AoSettings& settings, const TemporalInputs& in) {
-  constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   bool bent = settings.bent != 0;
   bool hasHistory = in.historyAo != graph::kNoResource && in.historyDistance != graph::kNoResource;
   auto params = projectionParams(camera.projection, camera.width, camera.height);
@@ -80,8 +78,7 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
       },
       [&pipelines, bent, hasHistory, constants, in, historyAo, historyDistance](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.temporal(bent, hasHistory),
-                        {{in.current, kStorage}, {in.distance, kStorage}, {historyAo, kStorage},
-                         {historyDistance, kStorage}, {in.target, kStorage}},
+                        {in.current, in.distance, historyAo, historyDistance, in.target},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return in.target;

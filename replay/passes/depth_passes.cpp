@@ -21,7 +21,7 @@ graph::ResourceId addLinearizeDepthPass(graph::RenderGraph& graph, PassPipelines
         b.write(distanceTarget);
       },
       [&pipelines, constants, depth, distanceTarget](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.linearizeDepth(), {{depth, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {distanceTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+        dispatchCompute(ctx, pipelines.linearizeDepth(), {depth, distanceTarget}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return distanceTarget;
@@ -44,7 +44,7 @@ graph::ResourceId addReconstructNormalsPass(graph::RenderGraph& graph, PassPipel
         b.write(normals);
       },
       [&pipelines, constants, distance, normals](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.reconstructNormals(), {{distance}, {normals, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+        dispatchCompute(ctx, pipelines.reconstructNormals(), {distance, normals}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return normals;

@@ -39,7 +39,7 @@ graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipeline
       },
       [&pipelines, slices = settings.slices, steps = settings.steps, bent, thin = settings.thin > 0.0f, constants, inputs,
        ao](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals, thin), {{inputs.distance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {inputs.normals, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals, thin), {inputs.distance, inputs.normals, ao},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return ao;

@@ -18,7 +18,7 @@ graph::ResourceId addGtaoReferencePass(graph::RenderGraph& graph, PassPipelines&
       },
       [&pipelines, bent, thin = settings.thin > 0.0f, constants, inputs, ao](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.gtaoReference(kReferenceSlices, bent, inputs.viewSpaceNormals, thin),
-                        {{inputs.distance}, {inputs.normals}, {ao, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}}, &constants,
+                        {inputs.distance, inputs.normals, ao}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return ao;

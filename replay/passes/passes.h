@@ -32,6 +32,10 @@ class PassPipelines {
   const ComputePipeline& temporal(bool bent, bool hasHistory);
 
  private:
+  // The pipeline under `key`, created on first use.
+  const ComputePipeline& get(const std::string& key, std::span<const uint32_t> code,
+                             std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
+                             std::span<const SpecializationValue> specialization = {});
   VulkanContext& vk_;
   std::map<std::string, ComputePipeline> pipelines_;
 };

@@ -20,20 +20,21 @@ VkImageLayout PassContext::layout(ResourceId id) const {
 
 namespace aor {
 
-void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<DispatchImage> images,
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<graph::ResourceId> images,
                      const void* pushConstants, uint32_t width, uint32_t height) {
+  if (images.size() != pipeline.bindings.size()) throw std::logic_error("dispatch binds a different number of images than the pipeline declares");
   std::vector<VkDescriptorImageInfo> infos;
   infos.reserve(images.size());
   std::vector<VkWriteDescriptorSet> writes;
   uint32_t binding = 0;
-  for (const auto& d : images) {
-    bool storage = d.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    VkSampler sampler = storage ? VK_NULL_HANDLE : ctx.vk.nearestSampler;
-    infos.push_back({sampler, ctx.image(d.resource).view, ctx.layout(d.resource)});
+  for (graph::ResourceId id : images) {
+    VkDescriptorType type = pipeline.bindings[binding];
+    VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : ctx.vk.nearestSampler;
+    infos.push_back({sampler, ctx.image(id).view, ctx.layout(id)});
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstBinding = binding++;
     write.descriptorCount = 1;
-    write.descriptorType = d.type;
+    write.descriptorType = type;
     write.pImageInfo = &infos.back();
     writes.push_back(write);
   }

@@ -24,16 +24,10 @@ struct PassContext {
 
 namespace aor {
 
-// One descriptor of a compute dispatch: sampled images use texelFetch (nearest sampler), storage
-// images are written or read with imageLoad.
-struct DispatchImage {
-  graph::ResourceId resource;
-  VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-};
-
-// Binds `pipeline`, pushes the descriptors (binding i = images[i]) and push constants, and
-// dispatches one 8x8 workgroup per 8x8 pixel tile.
-void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<DispatchImage> images,
+// Binds `pipeline`, pushes the descriptors (binding i = images[i], of the type the pipeline's
+// layout gives it: sampled images through the nearest sampler, storage images as they are) and
+// push constants, and dispatches one 8x8 workgroup per 8x8 pixel tile.
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<graph::ResourceId> images,
                      const void* pushConstants, uint32_t width, uint32_t height);
 
 }  // namespace aor

@@ -108,6 +108,7 @@ ComputePipeline createComputePipeline(const VulkanContext& ctx, std::span<const 
                                       std::span<const SpecializationValue> specialization) {
   ComputePipeline p;
   p.pushConstantSize = pushConstantSize;
+  p.bindings.assign(bindings.begin(), bindings.end());
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
   for (uint32_t i = 0; i < bindings.size(); ++i)
     layoutBindings.push_back({i, bindings[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});

@@ -54,6 +54,7 @@ struct ComputePipeline {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
   uint32_t pushConstantSize = 0;
+  std::vector<VkDescriptorType> bindings;  // type of set 0's binding i
 };
 
 struct SpecializationValue {
