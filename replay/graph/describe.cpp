@@ -23,22 +23,6 @@ std::string formatText(VkFormat format) {
   return name;
 }
 
-std::string passName(const RenderGraph& graph, const CompiledGraph& compiled, int index) {
-  if (index < 0 || static_cast<size_t>(index) >= compiled.passes.size()) return "-";
-  return graph.passes()[compiled.passes[index].pass].name;
-}
-
-// Other members of a resource's memory slot.
-std::vector<ResourceId> aliasesOf(const CompiledGraph& compiled, ResourceId id) {
-  std::vector<ResourceId> out;
-  const int slot = compiled.resources[id].memorySlot;
-  if (slot < 0 || static_cast<size_t>(slot) >= compiled.slots.size()) return out;
-  for (ResourceId other : compiled.slots[slot].resources) {
-    if (other != id) out.push_back(other);
-  }
-  return out;
-}
-
 // Graphviz double-quoted string with escapes; `\n` in the input becomes a centred line break.
 std::string dotQuote(const std::string& text) {
   std::string out = "\"";
@@ -56,6 +40,22 @@ std::string dotQuote(const std::string& text) {
 }
 
 }  // namespace
+
+std::string passName(const RenderGraph& graph, const CompiledGraph& compiled, int index) {
+  if (index < 0 || static_cast<size_t>(index) >= compiled.passes.size()) return "-";
+  return graph.passes()[compiled.passes[index].pass].name;
+}
+
+std::vector<ResourceId> aliasesOf(const CompiledGraph& compiled, ResourceId id) {
+  std::vector<ResourceId> out;
+  const int slot = compiled.resources[id].memorySlot;
+  if (slot < 0 || static_cast<size_t>(slot) >= compiled.slots.size()) return out;
+  for (ResourceId other : compiled.slots[slot].resources) {
+    if (other != id) out.push_back(other);
+  }
+  return out;
+}
+
 
 std::string describe(const RenderGraph& graph, const CompiledGraph& compiled) {
   const auto& passes = graph.passes();

@@ -57,31 +57,21 @@ struct Tracker {
 // ---------------------------------------------------------------------------------------------
 // Building
 
-void PassBuilder::read(ResourceId id, Access access) {
-  PassDecl& pass = graph_.passes_.at(pass_);
-  if (id == kNoResource || id >= graph_.resources_.size()) {
-    throw std::invalid_argument(fmt::format(
-        "pass '{}' reads an invalid resource id ({})", pass.name,
-        id == kNoResource ? std::string("kNoResource") : std::to_string(id)));
-  }
-  if (isWrite(access)) {
-    throw std::invalid_argument(fmt::format("pass '{}' reads '{}' with a write access ({})",
-                                            pass.name, graph_.resources_[id].name,
-                                            accessName(access)));
-  }
-  pass.accesses.emplace_back(id, access);
-}
+void PassBuilder::read(ResourceId id, Access access) { declare(id, access, false); }
 
-void PassBuilder::write(ResourceId id, Access access) {
+void PassBuilder::write(ResourceId id, Access access) { declare(id, access, true); }
+
+void PassBuilder::declare(ResourceId id, Access access, bool asWrite) {
   PassDecl& pass = graph_.passes_.at(pass_);
+  const char* verb = asWrite ? "writes" : "reads";
   if (id == kNoResource || id >= graph_.resources_.size()) {
     throw std::invalid_argument(fmt::format(
-        "pass '{}' writes an invalid resource id ({})", pass.name,
+        "pass '{}' {} an invalid resource id ({})", pass.name, verb,
         id == kNoResource ? std::string("kNoResource") : std::to_string(id)));
   }
-  if (!isWrite(access)) {
-    throw std::invalid_argument(fmt::format("pass '{}' writes '{}' with a read access ({})",
-                                            pass.name, graph_.resources_[id].name,
+  if (isWrite(access) != asWrite) {
+    throw std::invalid_argument(fmt::format("pass '{}' {} '{}' with a {} access ({})", pass.name, verb,
+                                            graph_.resources_[id].name, asWrite ? "read" : "write",
                                             accessName(access)));
   }
   pass.accesses.emplace_back(id, access);

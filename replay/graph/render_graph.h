@@ -54,6 +54,7 @@ class PassBuilder {
  private:
   friend class RenderGraph;
   PassBuilder(class RenderGraph& graph, uint32_t pass) : graph_(graph), pass_(pass) {}
+  void declare(ResourceId id, Access access, bool asWrite);  // read() and write(), checked alike
   class RenderGraph& graph_;
   uint32_t pass_;
 };
@@ -157,5 +158,9 @@ const char* kindName(ResourceKind kind);           // "transient", "imported", "
 const char* layoutName(VkImageLayout layout);      // "SHADER_READ_ONLY_OPTIMAL", ...
 std::string stageNames(VkPipelineStageFlags2 stages);  // "COMPUTE_SHADER|COPY", "NONE"
 std::string accessNames(VkAccessFlags2 access);        // "SHADER_SAMPLED_READ", "NONE"
+// Name of the compiled pass at `index` (into CompiledGraph::passes), "-" when out of range.
+std::string passName(const RenderGraph& graph, const CompiledGraph& compiled, int index);
+// The other resources sharing `id`'s memory slot (none when it has no slot).
+std::vector<ResourceId> aliasesOf(const CompiledGraph& compiled, ResourceId id);
 
 }  // namespace aor::graph
