@@ -44,10 +44,7 @@ GraphResources::Persistent& GraphResources::persistent(const graph::ResourceDecl
     destroyImage(vk_, p.image);
     p = {};
   }
-  if (!p.image.image) {
-    p.image = createImage(vk_, d.width, d.height, d.format, kPersistentUsage);
-    p.bytes = graph::imageBytes(d);
-  }
+  if (!p.image.image) p.image = createImage(vk_, d.width, d.height, d.format, kPersistentUsage);
   return p;
 }
 
@@ -136,13 +133,6 @@ void GraphResources::dropHistory() {
     }
   }
   historyParity_.clear();
-}
-
-uint64_t GraphResources::allocatedBytes() const {
-  uint64_t bytes = 0;
-  for (const auto& [name, p] : persistent_) bytes += p.bytes;
-  for (const auto& slot : slots_) bytes += slot.size;
-  return bytes;
 }
 
 }  // namespace aor

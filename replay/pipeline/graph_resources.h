@@ -30,14 +30,11 @@ class GraphResources {
   void swapHistory();
   // Frees all history images (reset on a size change: they are re-created at the new size).
   void dropHistory();
-  // Device memory held now: persistent images plus transient slots.
-  uint64_t allocatedBytes() const;
 
  private:
   struct Persistent {
     GpuImage image;
     graph::ImageState state;
-    VkDeviceSize bytes = 0;
   };
   std::string physicalKey(const graph::ResourceDecl& decl) const;
   Persistent& persistent(const graph::ResourceDecl& decl);

@@ -3,7 +3,6 @@
 // the frame's compiled render graph `warmup + repeat` times with timestamps, read the result back,
 // and decide history validity for the next frame. Outputs go to a FrameSink.
 #include <functional>
-#include <map>
 #include <string>
 #include <vector>
 

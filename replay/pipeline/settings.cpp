@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -43,11 +42,6 @@ const std::vector<Key>& keys() {
 
 }  // namespace
 
-const std::vector<std::string>& presetNames() {
-  static const std::vector<std::string> names = {"low", "medium", "high", "ultra"};
-  return names;
-}
-
 void applyPreset(AoSettings& settings, std::string_view preset) {
   for (const auto& p : kPresets)
     if (preset == p.name) {
@@ -55,7 +49,9 @@ void applyPreset(AoSettings& settings, std::string_view preset) {
       settings.steps = p.steps;
       return;
     }
-  throw InputError("", std::nullopt, "--preset", fmt::format("unknown preset '{}' (low, medium, high, ultra)", preset));
+  std::vector<std::string> names;
+  for (const auto& p : kPresets) names.push_back(p.name);
+  throw InputError("", std::nullopt, "--preset", fmt::format("unknown preset '{}' ({})", preset, fmt::join(names, ", ")));
 }
 
 void applySetting(AoSettings& settings, std::string_view assignment) {

@@ -30,7 +30,6 @@ struct AoSettings {
   bool operator==(const AoSettings&) const = default;
 };
 
-const std::vector<std::string>& presetNames();
 // Presets set slices x steps: low 1x2, medium 2x2, high 3x3, ultra 9x3. Throws InputError.
 void applyPreset(AoSettings& settings, std::string_view preset);
 // "KEY=VALUE"; unknown keys and out-of-range values throw InputError naming the key.

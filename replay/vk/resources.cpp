@@ -30,7 +30,6 @@ GpuImage createImageUnbound(const VulkanContext& ctx, uint32_t width, uint32_t h
   image.format = format;
   image.width = width;
   image.height = height;
-  image.usage = usage;
   VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &image.image));
   return image;
 }
@@ -62,13 +61,11 @@ void destroyImage(const VulkanContext& ctx, GpuImage& image) {
   image = {};
 }
 
-GpuMemory allocateDeviceMemory(const VulkanContext& ctx, VkDeviceSize size, uint32_t typeBits) {
+GpuMemory allocateDeviceMemory(const VulkanContext& ctx, VkDeviceSize size, uint32_t typeBits, VkMemoryPropertyFlags flags) {
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = size;
-  info.memoryTypeIndex = findMemoryType(ctx, typeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  info.memoryTypeIndex = findMemoryType(ctx, typeBits, flags);
   GpuMemory memory;
-  memory.size = size;
-  memory.typeIndex = info.memoryTypeIndex;
   VK_CHECK(vkAllocateMemory(ctx.device, &info, nullptr, &memory.memory));
   return memory;
 }
@@ -80,18 +77,15 @@ void freeMemory(const VulkanContext& ctx, GpuMemory& memory) {
 
 GpuBuffer createHostBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
   GpuBuffer buffer;
-  buffer.size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
   info.usage = usage;
   VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &buffer.buffer));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, buffer.buffer, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits,
-                                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &buffer.memory));
+  buffer.memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits,
+                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
+                      .memory;
   VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, buffer.memory, 0));
   VK_CHECK(vkMapMemory(ctx.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
   return buffer;

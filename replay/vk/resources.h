@@ -17,20 +17,16 @@ struct GpuImage {
   VkDeviceMemory memory = VK_NULL_HANDLE;  // set only when the image owns its memory
   VkFormat format = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
-  VkImageUsageFlags usage = 0;
 };
 
 struct GpuBuffer {
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   void* mapped = nullptr;  // host-visible buffers stay mapped
-  VkDeviceSize size = 0;
 };
 
 struct GpuMemory {
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkDeviceSize size = 0;
-  uint32_t typeIndex = 0;
 };
 
 uint32_t findMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags);
@@ -42,7 +38,8 @@ void bindImage(const VulkanContext& ctx, GpuImage& image, VkDeviceMemory memory,
 GpuImage createImage(const VulkanContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage);
 void destroyImage(const VulkanContext& ctx, GpuImage& image);
 
-GpuMemory allocateDeviceMemory(const VulkanContext& ctx, VkDeviceSize size, uint32_t typeBits);
+GpuMemory allocateDeviceMemory(const VulkanContext& ctx, VkDeviceSize size, uint32_t typeBits,
+                               VkMemoryPropertyFlags flags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 void freeMemory(const VulkanContext& ctx, GpuMemory& memory);
 
 // Host-visible, host-coherent, persistently mapped buffer for uploads and read-backs.
