@@ -276,23 +276,21 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     if (temporalWanted) resources.swapHistory();
     history = {true, capture.width, capture.height, settings, camera, decoded.medianDistance};
     finishPendingSink();
-    bool historyValid = record.historyValid;
-    std::string resetReason = record.resetReason;
-    result.frames.push_back(std::move(record));
     if (sink) {
-      auto job = std::make_shared<DecodedFrame>(std::move(decoded));
-      pendingRecord = result.frames.size() - 1;
-      pendingSink = std::async(std::launch::async, [&sink, job, raw = std::move(readback), index, &capture, bent,
-                                                    valid = historyValid, reason = std::move(resetReason)] {
+      pendingRecord = result.frames.size();  // the record pushed below
+      pendingSink = std::async(std::launch::async, [&sink, &capture, bent, index, raw = std::move(readback),
+                                                    frame = std::move(decoded), valid = record.historyValid,
+                                                    reason = record.resetReason] {
         auto start = Clock::now();
         FrameOutput output = decodeReadback(raw, index, capture.width, capture.height, bent);
-        output.gbuffer = &job->gbuffer;
+        output.gbuffer = &frame.gbuffer;
         output.historyValid = valid;
         output.resetReason = reason;
         sink(output);
         return msSince(start);
       });
     }
+    result.frames.push_back(std::move(record));
     if (options.progress) options.progress(index - begin + 1, end - begin);
   }
   finishPendingSink();
