@@ -111,11 +111,10 @@ HistoryPair RenderGraph::createHistory(std::string name, ImageDesc desc, bool pr
   validateDesc(name, desc);
   HistoryPair pair;
   if (previousValid) {
-    resources_.push_back(
-        ResourceDecl{name + ".previous", desc, ResourceKind::History, previousState});
+    resources_.push_back(ResourceDecl{name + ".previous", desc, ResourceKind::History, previousState, name, false});
     pair.previous = static_cast<ResourceId>(resources_.size() - 1);
   }
-  resources_.push_back(ResourceDecl{name + ".current", desc, ResourceKind::History, currentState});
+  resources_.push_back(ResourceDecl{name + ".current", desc, ResourceKind::History, currentState, name, true});
   pair.current = static_cast<ResourceId>(resources_.size() - 1);
   return pair;
 }
@@ -158,7 +157,7 @@ CompiledGraph RenderGraph::compile() const {
         const ResourceDecl& res = resources_[id];
         const bool mustBeWritten =
             res.kind == ResourceKind::Transient ||
-            (res.kind == ResourceKind::History && res.name.ends_with(".current"));
+            (res.kind == ResourceKind::History && res.historyCurrent);
         if (lastWriter[id] < 0 && mustBeWritten) {
           throw std::logic_error(fmt::format(
               "pass '{}' reads {} '{}' before any earlier pass writes it", passes_[p].name,

@@ -64,6 +64,8 @@ struct ResourceDecl {
   ImageDesc desc;
   ResourceKind kind = ResourceKind::Transient;
   ImageState initialState;  // Imported/History: state left by earlier work; Transient: UNDEFINED
+  std::string historyBase;  // History: the pair's name ("ao_history"; `name` adds .previous/.current)
+  bool historyCurrent = false;  // History: the image this frame writes
 };
 
 struct PassDecl {

@@ -7,8 +7,8 @@
 namespace aor {
 namespace {
 
-graph::ImageState stateOf(const GraphResources* resources, const std::string& name) {
-  return resources ? resources->state(name) : graph::ImageState{};
+graph::ImageState historyStateOf(const GraphResources* resources, const char* base, bool current) {
+  return resources ? resources->historyState(base, current) : graph::ImageState{};
 }
 
 }  // namespace
@@ -33,9 +33,9 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
   graph::HistoryPair distanceHistory, aoHistory;
   graph::ResourceId distance;
   if (in.temporalWanted) {
-    std::string prev = std::string(kDistanceHistory) + ".previous", cur = std::string(kDistanceHistory) + ".current";
     distanceHistory = g.createHistory(kDistanceHistory, {w, h, VK_FORMAT_R32_SFLOAT}, in.historyValid,
-                                      stateOf(resources, prev), stateOf(resources, cur));
+                                      historyStateOf(resources, kDistanceHistory, false),
+                                      historyStateOf(resources, kDistanceHistory, true));
     distance = distanceHistory.current;
   } else {
     distance = g.createImage("view_distance", {w, h, VK_FORMAT_R32_SFLOAT});
@@ -57,9 +57,8 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
   frame.finalAo = denoised;
 
   if (in.temporalWanted) {
-    std::string prev = std::string(kAoHistory) + ".previous", cur = std::string(kAoHistory) + ".current";
-    aoHistory = g.createHistory(kAoHistory, {w, h, aoFormat(bent)}, in.historyValid, stateOf(resources, prev),
-                                stateOf(resources, cur));
+    aoHistory = g.createHistory(kAoHistory, {w, h, aoFormat(bent)}, in.historyValid,
+                                historyStateOf(resources, kAoHistory, false), historyStateOf(resources, kAoHistory, true));
     TemporalInputs t{denoised, distance, aoHistory.previous, distanceHistory.previous, aoHistory.current,
                      in.previousCamera};
     frame.finalAo = addTemporalPass(g, pipelines, cam, settings, t);

@@ -10,12 +10,6 @@ namespace {
 constexpr VkImageUsageFlags kPersistentUsage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                                                VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 
-// "ao_history.current" -> {"ao_history", true}
-std::pair<std::string, bool> splitHistoryName(const std::string& name) {
-  auto dot = name.rfind('.');
-  return {name.substr(0, dot), name.substr(dot + 1) == "current"};
-}
-
 }  // namespace
 
 GraphResources::~GraphResources() {
@@ -23,21 +17,22 @@ GraphResources::~GraphResources() {
   for (auto& [name, p] : persistent_) destroyImage(vk_, p.image);
 }
 
-std::string GraphResources::physicalKey(const graph::ResourceDecl& decl) const {
-  if (decl.kind != graph::ResourceKind::History) return decl.name;
-  auto [base, isCurrent] = splitHistoryName(decl.name);
+std::string GraphResources::historyKey(const std::string& base, bool current) const {
   auto parity = historyParity_.count(base) ? historyParity_.at(base) : 0;
-  return fmt::format("{}#{}", base, isCurrent ? parity : 1 - parity);
+  return fmt::format("{}#{}", base, current ? parity : 1 - parity);
 }
 
-graph::ImageState GraphResources::state(const std::string& resourceName) const {
-  bool history = resourceName.ends_with(".current") || resourceName.ends_with(".previous");
-  graph::ResourceDecl decl{resourceName, {}, history ? graph::ResourceKind::History : graph::ResourceKind::Imported, {}};
-  auto it = persistent_.find(physicalKey(decl));
+std::string GraphResources::physicalKey(const graph::ResourceDecl& decl) const {
+  return decl.kind == graph::ResourceKind::History ? historyKey(decl.historyBase, decl.historyCurrent) : decl.name;
+}
+
+graph::ImageState GraphResources::historyState(const std::string& base, bool current) const {
+  auto it = persistent_.find(historyKey(base, current));
   return it == persistent_.end() ? graph::ImageState{} : it->second.state;
 }
 
 GraphResources::Persistent& GraphResources::persistent(const graph::ResourceDecl& decl) {
+  if (decl.kind == graph::ResourceKind::History) historyParity_.try_emplace(decl.historyBase, 0);
   auto& p = persistent_[physicalKey(decl)];
   const auto& d = decl.desc;
   if (p.image.image && (p.image.width != d.width || p.image.height != d.height || p.image.format != d.format)) {
@@ -115,11 +110,6 @@ void GraphResources::keepFinalStates(const graph::RenderGraph& graph, const grap
 }
 
 void GraphResources::swapHistory() {
-  for (auto& [key, p] : persistent_) {
-    auto hash = key.rfind('#');
-    if (hash == std::string::npos) continue;
-    historyParity_.try_emplace(key.substr(0, hash), 0);
-  }
   for (auto& [base, parity] : historyParity_) parity = 1 - parity;
 }
 

@@ -20,8 +20,8 @@ class GraphResources {
   GraphResources(const GraphResources&) = delete;
   GraphResources& operator=(const GraphResources&) = delete;
 
-  // State an imported or history resource was left in, for RenderGraph::importImage/createHistory.
-  graph::ImageState state(const std::string& resourceName) const;
+  // State the history pair `base`'s previous or current image was left in, for createHistory.
+  graph::ImageState historyState(const std::string& base, bool current) const;
   // Physical image of every used resource, indexed by ResourceId (null where unused).
   std::vector<const GpuImage*> prepare(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled);
   // Carries final states of imported and history images over to the next execution.
@@ -36,6 +36,7 @@ class GraphResources {
     GpuImage image;
     graph::ImageState state;
   };
+  std::string historyKey(const std::string& base, bool current) const;  // "<base>#0|1"
   std::string physicalKey(const graph::ResourceDecl& decl) const;
   Persistent& persistent(const graph::ResourceDecl& decl);
   void prepareTransients(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled);
