@@ -8,6 +8,7 @@
 
 #include "cpu/gtao_double_kernel.h"
 #include "gtao.h"
+#include "metrics/percentile.h"
 
 namespace aor {
 namespace {
@@ -90,9 +91,7 @@ Deviation visibilityDeviation(const DoubleAoImage& model, const std::vector<floa
       d.worstPixel = i;
     }
   }
-  size_t rank = std::min(errors.size() - 1, size_t(std::ceil(0.99 * double(errors.size()))) - 1);
-  std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(rank), errors.end());
-  d.p99 = errors[rank];
+  d.p99 = nearestRankPercentile(std::move(errors), 0.99);
   return d;
 }
 

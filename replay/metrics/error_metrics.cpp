@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "metrics/percentile.h"
+
 namespace aor {
 namespace {
 
@@ -38,14 +40,6 @@ std::vector<double> blur(const std::vector<double>& image, int width, int height
       out[size_t(y) * size_t(width) + size_t(x)] = sum;
     }
   return out;
-}
-
-double percentile99(std::vector<double> absErrors) {
-  if (absErrors.empty()) return 0;
-  size_t rank = size_t(std::ceil(0.99 * double(absErrors.size())));  // nearest rank, 1-based
-  size_t index = std::clamp<size_t>(rank, 1, absErrors.size()) - 1;
-  std::nth_element(absErrors.begin(), absErrors.begin() + std::ptrdiff_t(index), absErrors.end());
-  return absErrors[index];
 }
 
 double psnrFromMse(double mse) { return mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity(); }
@@ -120,7 +114,7 @@ ErrorMetrics computeErrorMetrics(const float* output, const float* reference, co
   m.bias = m.sumSigned / count;
   m.psnr = psnrFromMse(m.sumSquared / count);
   m.ssim = maskedSsim(output, reference, mask.data(), width, height);
-  m.p99 = percentile99(std::move(absErrors));
+  m.p99 = nearestRankPercentile(std::move(absErrors), 0.99);
   return m;
 }
 

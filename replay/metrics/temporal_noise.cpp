@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/percentile.h"
+
 namespace aor {
 
 bool StaticWindow::continues(const FrameGeometry& g, bool cut) const {
@@ -43,10 +45,7 @@ NoiseSummary summarizeNoise(std::vector<float> deviations) {
   double sum = 0;
   for (float d : deviations) sum += d;
   s.mean = sum / double(deviations.size());
-  size_t rank = size_t(std::ceil(0.99 * double(deviations.size())));
-  rank = std::clamp<size_t>(rank, 1, deviations.size()) - 1;
-  std::nth_element(deviations.begin(), deviations.begin() + std::ptrdiff_t(rank), deviations.end());
-  s.p99 = deviations[rank];
+  s.p99 = nearestRankPercentile(std::move(deviations), 0.99);
   return s;
 }
 
