@@ -5,7 +5,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "gtao.h"
-#include "linearize_depth.h"
+#include "metrics/depth.h"
 
 namespace aor {
 
@@ -33,14 +33,11 @@ struct GtaoCpuPixel {
 }  // namespace shader
 
 CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings) {
-  auto params = projectionParams(camera.projection, camera.width, camera.height);
   size_t pixels = size_t(camera.width) * size_t(camera.height);
-  std::vector<float> distance(pixels);
+  std::vector<float> distance = linearViewDistances({gbuffer.depth.data(), pixels}, camera.projection);
   std::vector<glm::vec3> normals(pixels, glm::vec3(0.0f));
   glm::mat3 worldToView(camera.view);
-  for (size_t i = 0; i < pixels; ++i) {
-    distance[i] = shader::linearViewDistance(gbuffer.depth[i], params.projection22, params.projection32, params.reversedDepth);
-    if (gbuffer.normals.empty()) continue;
+  for (size_t i = 0; i < pixels && !gbuffer.normals.empty(); ++i) {
     // The GPU receives normals as half floats: quantise the same way.
     glm::vec3 n;
     for (int c = 0; c < 3; ++c) n[c] = glm::unpackHalf1x16(glm::packHalf1x16(gbuffer.normals[3 * i + size_t(c)]));

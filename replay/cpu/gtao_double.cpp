@@ -8,6 +8,7 @@
 
 #include "cpu/gtao_double_kernel.h"
 #include "gtao.h"
+#include "metrics/depth.h"
 #include "metrics/percentile.h"
 
 namespace aor {
@@ -50,7 +51,7 @@ DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera,
   in.bent = settings.bent != 0;
 
   const glm::mat4& p = camera.projection;
-  bool reversed = p[3][2] > 0.0f;
+  bool reversed = isReversedDepth(p);
   glm::dmat3 worldToView(glm::dmat4(camera.view));
   size_t pixels = size_t(camera.width) * size_t(camera.height);
   in.distance.resize(pixels);

@@ -55,8 +55,6 @@ nlohmann::json minMeanMax(const std::vector<double>& values) {
 
 }  // namespace
 
-bool isReversedDepth(const glm::mat4& projection) { return projection[3][2] > 0.0f; }
-
 bool isSkyDepth(float depth, bool reversedDepth) {
   if (!std::isfinite(depth)) return true;  // invalid depth cannot be compared either
   return reversedDepth ? depth <= 0.0f : depth >= 1.0f;

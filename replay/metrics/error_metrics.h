@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/analyzed_frame.h"
+#include "metrics/depth.h"  // isReversedDepth
 
 namespace aor {
 
@@ -30,7 +31,6 @@ struct ErrorMetrics {
   double sumSquared = 0, sumAbsolute = 0, sumSigned = 0;  // for pooling over frames
 };
 
-bool isReversedDepth(const glm::mat4& projection);
 bool isSkyDepth(float depth, bool reversedDepth);
 
 // `depth` may be null (nothing masked). Pixels with no non-sky neighbour in a window are skipped.

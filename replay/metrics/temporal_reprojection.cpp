@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "linearize_depth.h"
+#include "metrics/depth.h"
 #include "temporal_denoise.h"
 
 namespace aor {
 
 FrameGeometry frameGeometry(int width, int height, const float* depth, const glm::mat4& view, const glm::mat4& projection) {
   FrameGeometry g{width, height, view, projection, {}};
-  bool reversed = projection[3][2] > 0.0f;  // depth falls with distance exactly when P32 > 0
-  g.distance.resize(size_t(width) * size_t(height));
-  for (size_t i = 0; i < g.distance.size(); ++i)
-    g.distance[i] = shader::linearViewDistance(depth[i], projection[2][2], projection[3][2], reversed);
+  g.distance = linearViewDistances({depth, size_t(width) * size_t(height)}, projection);
   return g;
 }
 

@@ -5,18 +5,13 @@
 
 #include <fmt/format.h>
 
-#include "linearize_depth.h"
+#include "metrics/depth.h"
 
 namespace aor {
 
 float medianViewDistance(const std::vector<float>& depth, const glm::mat4& projection) {
-  bool reversed = projection[3][2] > 0.0f;
-  std::vector<float> distances;
-  distances.reserve(depth.size());
-  for (float d : depth) {
-    float distance = shader::linearViewDistance(d, projection[2][2], projection[3][2], reversed);
-    if (distance > 0.0f) distances.push_back(distance);
-  }
+  std::vector<float> distances = linearViewDistances(depth, projection);
+  std::erase_if(distances, [](float distance) { return !(distance > 0.0f); });  // sky and invalid depth
   if (distances.empty()) return 0.0f;
   auto middle = distances.begin() + std::ptrdiff_t(distances.size() / 2);
   std::nth_element(distances.begin(), middle, distances.end());

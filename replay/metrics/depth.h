@@ -1,0 +1,19 @@
+#pragma once
+// Depth-attachment conventions shared by the metrics, the CPU mirrors and the replayer's camera
+// checks (passes/camera.cpp makes the same test for the GPU passes).
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace aor {
+
+// Reversed depth (near = 1, far = 0): depth = -P22 + P32 / distance falls with distance exactly
+// when P32 > 0.
+inline bool isReversedDepth(const glm::mat4& projection) { return projection[3][2] > 0.0f; }
+
+// Linear view distance of every pixel with the shader's own conversion (shaders/linearize_depth.h):
+// sky and invalid depth give a distance <= 0.
+std::vector<float> linearViewDistances(std::span<const float> depth, const glm::mat4& projection);
+
+}  // namespace aor
