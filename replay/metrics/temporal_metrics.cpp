@@ -154,10 +154,12 @@ void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry
   }
 }
 
-NoiseSummary TemporalAnalysis::staticNoise() const {
+NoiseSummary TemporalAnalysis::staticNoise() const { return staticNoise(window_.pixelDeviations()); }
+
+// The closed windows' deviations and those of the open window, computed once by the caller.
+NoiseSummary TemporalAnalysis::staticNoise(const std::vector<float>& openWindowDeviations) const {
   auto deviations = closedWindowDeviations_;
-  auto open = window_.pixelDeviations();
-  deviations.insert(deviations.end(), open.begin(), open.end());
+  deviations.insert(deviations.end(), openWindowDeviations.begin(), openWindowDeviations.end());
   return summarizeNoise(std::move(deviations));
 }
 
@@ -177,21 +179,15 @@ std::vector<size_t> TemporalAnalysis::disocclusionPixels() const {
   return pixels;
 }
 
-// abs_error from each history reset up to the next one (only runs that keep history have resets
-// worth following).
-std::vector<std::vector<double>> TemporalAnalysis::resetCurves(std::vector<size_t>* starts) const {
-  std::vector<std::vector<double>> curves;
-  if (historyWeight_ <= 0.0f) return curves;
-  for (size_t i = 0; i < frames_.size(); ++i) {
-    if (frames_[i].historyValid || frames_[i].resetReason == "single-frame replay") continue;
-    std::vector<double> curve;
-    for (size_t j = i; j < frames_.size() && (j == i || frames_[j].historyValid) && frames_[j].absError >= 0; ++j)
-      curve.push_back(frames_[j].absError);
-    if (curve.empty()) continue;
-    curves.push_back(std::move(curve));
-    starts->push_back(i);
-  }
-  return curves;
+// abs_error from the history reset at frames_[start] up to the next reset; empty when that frame is
+// no reset worth following (only runs that keep history have those) or measured no abs_error.
+std::vector<double> TemporalAnalysis::resetCurve(size_t start) const {
+  std::vector<double> curve;
+  if (historyWeight_ <= 0.0f) return curve;
+  if (frames_[start].historyValid || frames_[start].resetReason == "single-frame replay") return curve;
+  for (size_t j = start; j < frames_.size() && (j == start || frames_[j].historyValid) && frames_[j].absError >= 0; ++j)
+    curve.push_back(frames_[j].absError);
+  return curve;
 }
 
 nlohmann::json TemporalAnalysis::frameJson(int index) const {
@@ -202,10 +198,11 @@ nlohmann::json TemporalAnalysis::frameJson(int index) const {
   if (it->warpingError >= 0) j["warping_error"] = it->warpingError;
   if (it->derivativeError >= 0) j["derivative_error"] = it->derivativeError;
   if (it->absError >= 0) j["abs_error"] = it->absError;
-  std::vector<size_t> starts;
-  auto curves = resetCurves(&starts);
-  for (size_t c = 0; c < curves.size(); ++c)
-    if (frames_[starts[c]].index == index) j.update(responseJson(analyzeResponse(curves[c], historyWeight_)));
+  for (size_t i = size_t(it - frames_.begin()); i < frames_.size(); ++i) {
+    if (frames_[i].index != index) continue;
+    auto curve = resetCurve(i);
+    if (!curve.empty()) j.update(responseJson(analyzeResponse(curve, historyWeight_)));
+  }
   if (j.empty()) return nullptr;
   return j;
 }
@@ -220,10 +217,11 @@ nlohmann::json TemporalAnalysis::summaryJson() const {
               {"residual", emaResidual(historyWeight_, std::max(predicted + 1, 2))},
               {"note", "stale history keeps w^n of its amplitude after n frames (w = history weight)"}};
 
-  auto noise = staticNoise();
+  auto openWindowDeviations = window_.pixelDeviations();
+  auto noise = staticNoise(openWindowDeviations);
   if (noise.pixels > 0) {
     auto windows = staticWindows_;
-    if (!window_.pixelDeviations().empty())
+    if (!openWindowDeviations.empty())
       windows.push_back({window_.firstFrame(), window_.firstFrame() + window_.frameCount() - 1});
     j["static_noise"] = {{"mean", noise.mean}, {"p99", noise.p99}, {"pixels", noise.pixels}, {"windows", windows}};
   } else {
@@ -233,12 +231,12 @@ nlohmann::json TemporalAnalysis::summaryJson() const {
   j["derivative_error"] = frameValueSummary(frames_, &TemporalFrameMetrics::derivativeError);
   j["abs_error"] = frameValueSummary(frames_, &TemporalFrameMetrics::absError);
 
-  std::vector<size_t> starts;
-  auto curves = resetCurves(&starts);
   nlohmann::json resets = nlohmann::json::array();
-  for (size_t c = 0; c < curves.size(); ++c) {
-    nlohmann::json r{{"frame", frames_[starts[c]].index}, {"reason", frames_[starts[c]].resetReason}, {"abs_error", curves[c]}};
-    r.update(responseJson(analyzeResponse(curves[c], historyWeight_)));
+  for (size_t i = 0; i < frames_.size(); ++i) {
+    auto curve = resetCurve(i);
+    if (curve.empty()) continue;
+    nlohmann::json r{{"frame", frames_[i].index}, {"reason", frames_[i].resetReason}, {"abs_error", curve}};
+    r.update(responseJson(analyzeResponse(curve, historyWeight_)));
     resets.push_back(r);
   }
   j["resets"] = resets;

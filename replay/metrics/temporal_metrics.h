@@ -69,7 +69,8 @@ class TemporalAnalysis {
   };
   void trackAges(const AnalyzedFrame& frame, const FrameGeometry& geometry, const Reprojection* reprojection,
                  const float* truth, Previous& next);
-  std::vector<std::vector<double>> resetCurves(std::vector<size_t>* starts) const;
+  std::vector<double> resetCurve(size_t start) const;
+  NoiseSummary staticNoise(const std::vector<float>& openWindowDeviations) const;
 
   float historyWeight_ = 0;
   std::string errorSource_;
