@@ -47,19 +47,8 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Ao
   }
   shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
                              settings.thin > 0.0f, &distance, &normals};
-  CpuAoImage out;
-  out.width = camera.width;
-  out.height = camera.height;
-  out.visibility.resize(pixels);
-  if (settings.bent) out.bent.resize(pixels);
-  for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x) {
-      glm::vec3 bent;
-      size_t i = size_t(y) * size_t(camera.width) + size_t(x);
-      out.visibility[i] = pixel.gtaoPixel(glm::ivec2(x, y), bent);
-      if (settings.bent) out.bent[i] = bent;
-    }
-  return out;
+  return computeAoImage<float>(camera.width, camera.height, settings.bent != 0,
+                               [&](glm::ivec2 p, glm::vec3& bent) { return pixel.gtaoPixel(p, bent); });
 }
 
 }  // namespace aor

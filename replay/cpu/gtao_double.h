@@ -7,19 +7,12 @@
 #include <cstddef>
 #include <vector>
 
-#include <glm/glm.hpp>
-
 #include "capture/capture.h"
+#include "cpu/ao_image.h"
 #include "passes/passes.h"
 #include "pipeline/settings.h"
 
 namespace aor {
-
-struct DoubleAoImage {
-  int width = 0, height = 0;
-  std::vector<double> visibility;
-  std::vector<glm::dvec3> bent;  // view space; empty with bent=0
-};
 
 DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings);
 
