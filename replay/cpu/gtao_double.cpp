@@ -45,7 +45,6 @@ DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera,
   in.falloffRange = settings.falloff;
   in.thin = settings.thin;
   in.power = settings.power;
-  in.frameIndex = camera.frameIndex;
   in.slices = settings.slices;
   in.steps = settings.steps;
   in.bent = settings.bent != 0;
@@ -64,20 +63,7 @@ DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera,
       in.normals[i] = viewNormal(gbuffer, i, worldToView);
       in.noise[i] = shader::gtaoNoise(glm::ivec2(x, y), camera.frameIndex);  // the float shader's own noise
     }
-
-  DoubleAoImage out;
-  out.width = camera.width;
-  out.height = camera.height;
-  out.visibility.resize(pixels);
-  if (in.bent) out.bent.resize(pixels);
-  for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x) {
-      size_t i = size_t(y) * size_t(camera.width) + size_t(x);
-      glm::dvec3 bent;
-      out.visibility[i] = gtaoPixelDouble(in, glm::ivec2(x, y), bent);
-      if (in.bent) out.bent[i] = bent;
-    }
-  return out;
+  return gtaoImageDouble(in);
 }
 
 Deviation visibilityDeviation(const DoubleAoImage& model, const std::vector<float>& visibility) {

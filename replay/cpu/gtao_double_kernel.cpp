@@ -55,8 +55,8 @@ struct GtaoDoublePixel {
 
 namespace aor {
 
-double gtaoPixelDouble(const DoubleGtaoInputs& inputs, glm::ivec2 pixel, glm::dvec3& bentNormal) {
-  shader_double::GtaoConstants pc{};
+DoubleAoImage gtaoImageDouble(const DoubleGtaoInputs& inputs) {
+  shader_double::GtaoConstants pc{};  // frameIndex stays 0: the noise hook reads inputs.noise instead
   pc.ndcToViewMul = inputs.ndcToViewMul;
   pc.ndcToViewAdd = inputs.ndcToViewAdd;
   pc.invSize = inputs.invSize;
@@ -66,10 +66,10 @@ double gtaoPixelDouble(const DoubleGtaoInputs& inputs, glm::ivec2 pixel, glm::dv
   pc.falloffRange = inputs.falloffRange;
   pc.thin = inputs.thin;
   pc.power = inputs.power;
-  pc.frameIndex = inputs.frameIndex;
   pc.viewPerPixel = inputs.viewPerPixel;
   shader_double::GtaoDoublePixel kernel{pc, inputs.slices, inputs.steps, inputs.bent, pc.thin > 0, &inputs};
-  return kernel.gtaoPixel(pixel, bentNormal);
+  return computeAoImage<double>(inputs.size.x, inputs.size.y, inputs.bent,
+                                [&](glm::ivec2 p, glm::dvec3& bent) { return kernel.gtaoPixel(p, bent); });
 }
 
 double linearViewDistanceDouble(double depth, double projection22, double projection32, bool reversedDepth) {

@@ -7,22 +7,24 @@
 
 #include <glm/glm.hpp>
 
+#include "cpu/ao_image.h"
+
 namespace aor {
 
 struct DoubleGtaoInputs {
   glm::dvec2 ndcToViewMul{1.0}, ndcToViewAdd{0.0}, invSize{1.0}, viewPerPixel{1.0};
   glm::ivec2 size{0};
   double radius = 1, pixelsPerUnit = 1, falloffRange = 0, thin = 0, power = 1;
-  uint32_t frameIndex = 0;
   int slices = 1, steps = 1;
   bool bent = false;
   std::vector<double> distance;      // linear view distance per pixel, <= 0 for sky/invalid
   std::vector<glm::dvec3> normals;   // view-space unit normals, zero when unusable
-  std::vector<glm::vec2> noise;      // per-pixel (direction, step) noise from the float shader code
+  std::vector<glm::vec2> noise;      // per-pixel (direction, step) noise from the float shader code,
+                                     // which is where the frame index enters
 };
 
-// gtaoPixel of the shader in double arithmetic; returns visibility, writes the bent normal.
-double gtaoPixelDouble(const DoubleGtaoInputs& inputs, glm::ivec2 pixel, glm::dvec3& bentNormal);
+// gtaoPixel of the shader in double arithmetic over every pixel of inputs.size.
+DoubleAoImage gtaoImageDouble(const DoubleGtaoInputs& inputs);
 
 // linearViewDistance of the shader (linearize_depth.h) in double arithmetic.
 double linearViewDistanceDouble(double depth, double projection22, double projection32, bool reversedDepth);
