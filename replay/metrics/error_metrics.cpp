@@ -53,13 +53,12 @@ nlohmann::json minMeanMax(const std::vector<double>& values) {
   return {{"min", lo}, {"mean", mean}, {"max", hi}};
 }
 
-}  // namespace
-
 bool isSkyDepth(float depth, bool reversedDepth) {
   if (!std::isfinite(depth)) return true;  // invalid depth cannot be compared either
   return reversedDepth ? depth <= 0.0f : depth >= 1.0f;
 }
 
+// Masked Gaussian-window SSIM (error_metrics.h); `mask` nonzero = compared. 1 when nothing is compared.
 double maskedSsim(const float* a, const float* b, const uint8_t* mask, int width, int height) {
   size_t n = size_t(width) * size_t(height);
   std::vector<double> m(n), ma(n), mb(n), maa(n), mbb(n), mab(n);
@@ -86,6 +85,8 @@ double maskedSsim(const float* a, const float* b, const uint8_t* mask, int width
   }
   return count ? sum / double(count) : 1.0;
 }
+
+}  // namespace
 
 ErrorMetrics computeErrorMetrics(const float* output, const float* reference, const float* depth, int width, int height,
                                  bool reversedDepth) {

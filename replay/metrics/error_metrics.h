@@ -31,13 +31,9 @@ struct ErrorMetrics {
   double sumSquared = 0, sumAbsolute = 0, sumSigned = 0;  // for pooling over frames
 };
 
-bool isSkyDepth(float depth, bool reversedDepth);
-
 // `depth` may be null (nothing masked). Pixels with no non-sky neighbour in a window are skipped.
 ErrorMetrics computeErrorMetrics(const float* output, const float* reference, const float* depth, int width, int height,
                                  bool reversedDepth);
-// Masked Gaussian-window SSIM (see above); `mask` nonzero = compared. 1 when nothing is compared.
-double maskedSsim(const float* a, const float* b, const uint8_t* mask, int width, int height);
 
 class ErrorAnalysis {
  public:

@@ -53,7 +53,6 @@ class TemporalAnalysis {
   nlohmann::json summaryJson() const;         // null when nothing was measured
 
   // For plots and checks.
-  const std::vector<TemporalFrameMetrics>& frames() const { return frames_; }
   NoiseSummary staticNoise() const;
   std::vector<double> disocclusionCurve() const;  // abs_error by frames since disocclusion
   std::vector<size_t> disocclusionPixels() const;  // pixels behind each point of the curve
