@@ -1,7 +1,6 @@
 #pragma once
 // One replayed frame as the metrics see it: the AO output next to the inputs it came from.
 // Pointers are valid only during the call that receives the frame.
-#include <optional>
 #include <string>
 #include <vector>
 

@@ -1,7 +1,6 @@
 #include "report/sweep.h"
 
 #include <algorithm>
-#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
