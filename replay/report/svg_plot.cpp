@@ -164,7 +164,6 @@ void drawSeries(std::string& svg, const PlotSeries& s, const char* color, const 
 constexpr double kLegendCharWidth = 7.0, kLegendFirstRowY = 44, kLegendRowHeight = 16;
 
 struct LegendEntry {
-  std::string swatch;  // drawn at (left, row y) by the format below
   std::string name;
   bool line = false;
   bool highlight = false;
@@ -174,10 +173,10 @@ struct LegendEntry {
 std::vector<LegendEntry> legendEntries(const std::vector<PlotSeries>& series) {
   std::vector<LegendEntry> entries;
   for (size_t i = 0; i < series.size(); ++i)
-    entries.push_back({"", series[i].name, series[i].lines, false, kPalette[i % std::size(kPalette)]});
+    entries.push_back({series[i].name, series[i].lines, false, kPalette[i % std::size(kPalette)]});
   bool anyHighlight = false;
   for (const auto& s : series) anyHighlight |= std::find(s.highlighted.begin(), s.highlighted.end(), true) != s.highlighted.end();
-  if (anyHighlight) entries.push_back({"", "Pareto-optimal", false, true, "#999"});
+  if (anyHighlight) entries.push_back({"Pareto-optimal", false, true, "#999"});
   return entries;
 }
 
@@ -185,26 +184,30 @@ double legendEntryWidth(const LegendEntry& e) { return 26 + kLegendCharWidth * d
 
 // Rows between the title and the plot, so the legend never hides a point: a swatch and a name
 // per series (then the highlighted-point marker), wrapping onto a new row at the plot's width.
-int legendRows(const std::vector<LegendEntry>& entries, const Axis& x) {
+struct LegendLayout {
+  std::vector<std::pair<double, double>> positions;  // (left, row y) of each entry
   int rows = 1;
-  double left = x.pixelLo;
-  for (const auto& e : entries) {
-    if (left > x.pixelLo && left + legendEntryWidth(e) > x.pixelHi) {
-      ++rows;
-      left = x.pixelLo;
-    }
-    left += legendEntryWidth(e);
-  }
-  return rows;
-}
+};
 
-void drawLegend(std::string& svg, const std::vector<LegendEntry>& entries, const Axis& x) {
+LegendLayout layoutLegend(const std::vector<LegendEntry>& entries, const Axis& x) {
+  LegendLayout layout;
   double left = x.pixelLo, rowY = kLegendFirstRowY;
   for (const auto& e : entries) {
     if (left > x.pixelLo && left + legendEntryWidth(e) > x.pixelHi) {
       left = x.pixelLo;
       rowY += kLegendRowHeight;
+      ++layout.rows;
     }
+    layout.positions.emplace_back(left, rowY);
+    left += legendEntryWidth(e);
+  }
+  return layout;
+}
+
+void drawLegend(std::string& svg, const std::vector<LegendEntry>& entries, const LegendLayout& layout) {
+  for (size_t k = 0; k < entries.size(); ++k) {
+    const LegendEntry& e = entries[k];
+    auto [left, rowY] = layout.positions[k];
     if (e.highlight)
       svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
                          left + 10, rowY);
@@ -215,7 +218,6 @@ void drawLegend(std::string& svg, const std::vector<LegendEntry>& entries, const
       svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
                          left + 10, rowY, e.color);
     svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 26, rowY + 4, escapeXml(e.name));
-    left += legendEntryWidth(e);
   }
 }
 
@@ -230,7 +232,8 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   x.pixelHi = width - kMarginRight;
   y.pixelLo = height - kMarginBottom;  // y grows upward: low values at the bottom
   auto legend = legendEntries(series);
-  y.pixelHi = kMarginTop + kLegendRowHeight * double(legendRows(legend, x) - 1);
+  auto legendLayout = layoutLegend(legend, x);
+  y.pixelHi = kMarginTop + kLegendRowHeight * double(legendLayout.rows - 1);
 
   std::string svg = fmt::format(
       R"(<svg xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif" font-size="12">)" "\n",
@@ -239,7 +242,7 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   drawAxes(svg, x, y, options);
   drawVerticalMarkers(svg, x, y, options.verticalMarkers);
   for (size_t i = 0; i < series.size(); ++i) drawSeries(svg, series[i], kPalette[i % std::size(kPalette)], x, y);
-  drawLegend(svg, legend, x);
+  drawLegend(svg, legend, legendLayout);
   svg += "</svg>\n";
   return svg;
 }
