@@ -21,8 +21,7 @@ float gtaoLoadDistance(ivec2 pixel) { return imageLoad(viewDistance, pixel).r; }
 vec3 gtaoLoadViewNormal(ivec2 pixel) {
   vec3 n = imageLoad(normals, pixel).xyz;
   if (!kViewNormals) n = mat3(pc.worldToView0.xyz, pc.worldToView1.xyz, pc.worldToView2.xyz) * n;
-  float len2 = dot(n, n);
-  return (len2 > 1e-12 && !isinf(len2)) ? n * inversesqrt(len2) : vec3(0.0);  // NaN/Inf/zero: unusable
+  return n;
 }
 
 #include "gtao_pixel.glsl"

@@ -2,7 +2,7 @@
 // CPU mirror. The includer provides:
 //   GtaoConstants pc; int kSlices, kSteps; bool kBent; bool kThin (pc.thin > 0);
 //   float gtaoLoadDistance(ivec2 pixel)      linear view distance, <= 0 for sky/invalid; pixel in range
-//   vec3  gtaoLoadViewNormal(ivec2 pixel)    view-space unit normal (may be zero for invalid input)
+//   vec3  gtaoLoadViewNormal(ivec2 pixel)    view-space normal as stored: any length, zero, NaN or Inf
 // Returns visibility in [0,1] and the bent normal (view space, unit) through `bentNormal`.
 
 vec3 gtaoViewPosition(ivec2 pixel, float dist) {
@@ -122,8 +122,10 @@ bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(GtaoCentre) c) {
   if (dist <= 0.0f) return false;
   c.position = gtaoViewPosition(pixel, dist);
   c.viewDir = normalize(-c.position);
-  c.normal = gtaoLoadViewNormal(pixel);
-  if (!(dot(c.normal, c.normal) > 1e-12f)) c.normal = c.viewDir;  // no usable normal: assume it faces us
+  vec3 normal = gtaoLoadViewNormal(pixel);
+  float len2 = dot(normal, normal);
+  // A zero, NaN or Inf normal is unusable: assume the surface faces the viewer.
+  c.normal = (len2 > 1e-12f && !isinf(len2)) ? normal * inversesqrt(len2) : c.viewDir;
   c.screenRadius = min(pc.radius * pc.pixelsPerUnit / dist, length(vec2(pc.size)));
   c.invFadeWidth = 1.0f / gtaoFadeWidth(pc.radius, pc.falloffRange);
   c.thinStretch = (1.0f + pc.thin) * (1.0f + pc.thin) - 1.0f;

@@ -26,8 +26,7 @@ float gtaoLoadDistance(ivec2 pixel) { return texelFetch(viewDistance, pixel, 0).
 vec3 gtaoLoadViewNormal(ivec2 pixel) {
   vec3 n = texelFetch(normals, pixel, 0).xyz;
   if (!kViewNormals) n = mat3(pc.worldToView0.xyz, pc.worldToView1.xyz, pc.worldToView2.xyz) * n;
-  float len2 = dot(n, n);
-  return len2 > 1e-12 ? n * inversesqrt(len2) : vec3(0.0);
+  return n;
 }
 
 #include "gtao_pixel.glsl"

@@ -41,9 +41,7 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Ao
     // The GPU receives normals as half floats: quantise the same way.
     glm::vec3 n;
     for (int c = 0; c < 3; ++c) n[c] = glm::unpackHalf1x16(glm::packHalf1x16(gbuffer.normals[3 * i + size_t(c)]));
-    n = worldToView * n;
-    float len2 = glm::dot(n, n);
-    normals[i] = (len2 > 1e-12f && !std::isinf(len2)) ? n * glm::inversesqrt(len2) : glm::vec3(0.0f);
+    normals[i] = worldToView * n;  // normalised (or replaced when unusable) by gtaoPixelCentre
   }
   shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
                              settings.thin > 0.0f, &distance, &normals};

@@ -25,14 +25,13 @@ void setProjection(DoubleGtaoInputs& in, const glm::mat4& p, int width, int heig
   in.size = {width, height};
 }
 
-// What the GPU's normal fetch sees: half-precision world normals rotated to view space, unit or zero.
+// What the GPU's normal fetch sees: half-precision world normals rotated to view space (the
+// shader code normalises them).
 glm::dvec3 viewNormal(const GBuffer& gbuffer, size_t i, const glm::dmat3& worldToView) {
   glm::dvec3 n;
   for (int c = 0; c < 3; ++c)
     n[c] = glm::unpackHalf1x16(glm::packHalf1x16(gbuffer.normals[3 * i + size_t(c)]));
-  n = worldToView * n;
-  double len2 = glm::dot(n, n);
-  return (len2 > 1e-12 && !std::isinf(len2)) ? n / std::sqrt(len2) : glm::dvec3(0.0);
+  return worldToView * n;
 }
 
 }  // namespace

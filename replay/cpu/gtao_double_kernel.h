@@ -18,7 +18,7 @@ struct DoubleGtaoInputs {
   int slices = 1, steps = 1;
   bool bent = false;
   std::vector<double> distance;      // linear view distance per pixel, <= 0 for sky/invalid
-  std::vector<glm::dvec3> normals;   // view-space unit normals, zero when unusable
+  std::vector<glm::dvec3> normals;   // view-space normals as the GPU fetches them (not normalised)
   std::vector<glm::vec2> noise;      // per-pixel (direction, step) noise from the float shader code,
                                      // which is where the frame index enters
 };

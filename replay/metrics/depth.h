@@ -1,6 +1,6 @@
 #pragma once
-// Depth-attachment conventions shared by the metrics, the CPU mirrors and the replayer's camera
-// checks (passes/camera.cpp makes the same test for the GPU passes).
+// Depth-attachment conventions shared by the metrics, the CPU mirrors, the replayer's camera
+// checks and the GPU passes' projection terms (passes/camera.cpp).
 #include <span>
 #include <vector>
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "metrics/depth.h"
+
 namespace aor {
 
 ProjectionParams projectionParams(const glm::mat4& p, int width, int height) {
@@ -12,8 +14,7 @@ ProjectionParams projectionParams(const glm::mat4& p, int width, int height) {
   params.pixelsPerUnit = std::abs(p[0][0]) * float(width) * 0.5f;
   params.projection22 = p[2][2];
   params.projection32 = p[3][2];
-  // depth = -P22 + P32 / distance: it falls with distance exactly when P32 > 0.
-  params.reversedDepth = p[3][2] > 0.0f;
+  params.reversedDepth = isReversedDepth(p);
   return params;
 }
 
