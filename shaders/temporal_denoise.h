@@ -19,6 +19,23 @@ struct TemporalConstants {
   float blend;              // history weight (seed 000 temporal_blend)
 };
 
+#ifdef __cplusplus
+// The reprojection terms of a frame against the previous one (everything but `blend`): built once
+// here for the temporal pass and for the metrics that judge which history it may reuse.
+inline TemporalConstants temporalReprojection(const mat4& view, const mat4& projection, const mat4& previousView,
+                                              const mat4& previousProjection, int width, int height) {
+  TemporalConstants c{};
+  c.viewToPreviousView = previousView * inverse(view);
+  c.previousProjection = {previousProjection[0][0], previousProjection[1][1], previousProjection[2][0],
+                          previousProjection[2][1]};
+  c.ndcToViewMul = {1.0f / projection[0][0], 1.0f / projection[1][1]};
+  c.ndcToViewAdd = {projection[2][0] / projection[0][0], projection[2][1] / projection[1][1]};
+  c.invSize = {1.0f / float(width), 1.0f / float(height)};
+  c.size = {width, height};
+  return c;
+}
+#endif
+
 // Previous-frame NDC of a previous-view-space point.
 AOR_FUNC vec2 previousNdc(vec3 previousView, vec4 previousProjection) {
   float w = -previousView.z;

@@ -22,14 +22,10 @@ size_t Reprojection::nearestPrevious(size_t pixel, int width, int height) const 
 }
 
 Reprojection reproject(const FrameGeometry& current, const FrameGeometry& previous) {
-  const auto& p = current.projection;
-  glm::vec2 ndcToViewMul{1.0f / p[0][0], 1.0f / p[1][1]};
-  glm::vec2 ndcToViewAdd{p[2][0] / p[0][0], p[2][1] / p[1][1]};
-  const auto& q = previous.projection;
-  glm::vec4 previousProjection{q[0][0], q[1][1], q[2][0], q[2][1]};
-  glm::mat4 viewToPreviousView = previous.view * glm::inverse(current.view);
+  // The temporal pass's own terms, so this judges exactly the history the pass may reuse.
+  auto t = shader::temporalReprojection(current.view, current.projection, previous.view, previous.projection,
+                                        current.width, current.height);
   glm::vec2 size(float(current.width), float(current.height));
-  glm::vec2 invSize = 1.0f / size;
 
   Reprojection r;
   size_t pixels = current.distance.size();
@@ -41,11 +37,11 @@ Reprojection reproject(const FrameGeometry& current, const FrameGeometry& previo
       float dist = current.distance[i];
       if (!(dist > 0.0f)) continue;
       r.state[i] = PixelHistory::Disoccluded;
-      glm::vec3 viewPos = shader::viewPositionFromNdc(shader::pixelToNdc(glm::vec2(x, y), invSize), dist, ndcToViewMul, ndcToViewAdd);
-      glm::vec3 previousView = glm::vec3(viewToPreviousView * glm::vec4(viewPos, 1.0f));
+      glm::vec3 viewPos = shader::viewPositionFromNdc(shader::pixelToNdc(glm::vec2(x, y), t.invSize), dist, t.ndcToViewMul, t.ndcToViewAdd);
+      glm::vec3 previousView = glm::vec3(t.viewToPreviousView * glm::vec4(viewPos, 1.0f));
       float expected = -previousView.z;
       if (!(expected > 0.0f)) continue;
-      glm::vec2 uv = shader::previousNdc(previousView, previousProjection) * 0.5f + 0.5f;
+      glm::vec2 uv = shader::previousNdc(previousView, t.previousProjection) * 0.5f + 0.5f;
       if (!(uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= 1.0f && uv.y <= 1.0f)) continue;
       r.position[i] = uv * size - 0.5f;
       size_t nearest = r.nearestPrevious(i, current.width, current.height);

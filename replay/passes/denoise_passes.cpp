@@ -50,15 +50,8 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
                                   const AoSettings& settings, const TemporalInputs& in) {
   bool bent = settings.bent != 0;
   bool hasHistory = in.historyAo != graph::kNoResource && in.historyDistance != graph::kNoResource;
-  auto params = projectionParams(camera.projection, camera.width, camera.height);
-  const auto& previous = in.previousCamera.projection;
-  shader::TemporalConstants constants{};
-  constants.viewToPreviousView = in.previousCamera.view * glm::inverse(camera.view);
-  constants.previousProjection = {previous[0][0], previous[1][1], previous[2][0], previous[2][1]};
-  constants.ndcToViewMul = params.ndcToViewMul;
-  constants.ndcToViewAdd = params.ndcToViewAdd;
-  constants.invSize = {1.0f / float(camera.width), 1.0f / float(camera.height)};
-  constants.size = {camera.width, camera.height};
+  auto constants = shader::temporalReprojection(camera.view, camera.projection, in.previousCamera.view,
+                                                in.previousCamera.projection, camera.width, camera.height);
   constants.blend = settings.temporal;
   // Without history the shader variant never reads bindings 2-3; the current AO and distance (of
   // the formats those bindings declare) stand in so every binding is valid and no pass declares a
