@@ -87,14 +87,7 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
     errors.addFrame(analyzed);
   });
   SweepRow row{config};
-  std::vector<std::pair<std::string, std::vector<double>>> samples;
-  for (const auto& frame : result.frames)
-    for (const auto& pass : frame.passes) {
-      auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.first == pass.name; });
-      if (it == samples.end()) it = samples.insert(samples.end(), {pass.name, {}});
-      it->second.insert(it->second.end(), pass.durationsMs.begin(), pass.durationsMs.end());
-    }
-  for (auto& [name, durations] : samples) {
+  for (const auto& [name, durations] : samplesByPass(result)) {
     double median = summarize(durations).median;
     row.passMs.emplace_back(name, median);
     row.totalMs += median;

@@ -1,5 +1,6 @@
 #include "report/run_outputs.h"
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 
@@ -13,7 +14,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Per pass name, every timed duration over all frames and repetitions, in first-seen order.
+nlohmann::json summaryJson(const Summary& s) {
+  return {{"min", s.min}, {"median", s.median}, {"max", s.max}, {"mean", s.mean}, {"count", s.count}};
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result) {
   std::vector<std::pair<std::string, std::vector<double>>> passes;
   for (const auto& frame : result.frames)
@@ -24,12 +30,6 @@ std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const Rep
     }
   return passes;
 }
-
-nlohmann::json summaryJson(const Summary& s) {
-  return {{"min", s.min}, {"median", s.median}, {"max", s.max}, {"mean", s.mean}, {"count", s.count}};
-}
-
-}  // namespace
 
 void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
   fs::create_directories(outDir / "ao");

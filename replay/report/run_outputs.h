@@ -2,6 +2,8 @@
 // What `aoreplay run` writes: ao/NNNN.exr + ao/NNNN.png per frame, report.json, trace.json.
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +13,8 @@
 namespace aor {
 
 void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& frame);
+// Per pass name, every timed duration over all frames and repetitions, in first-seen order.
+std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
 // Chrome trace-event format: one track for GPU passes, one for the host's per-frame phases.
 nlohmann::json buildTrace(const ReplayResult& result);
