@@ -129,11 +129,13 @@ nlohmann::json buildTrace(const ReplayResult& result) {
   return {{"traceEvents", events}, {"displayTimeUnit", "ms"}};
 }
 
-void writeJson(const fs::path& path, const nlohmann::json& json) {
+void writeText(const fs::path& path, const std::string& text) {
   std::ofstream out(path);
-  out << json.dump(2) << "\n";
+  out << text;
   if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
 }
+
+void writeJson(const fs::path& path, const nlohmann::json& json) { writeText(path, json.dump(2) + "\n"); }
 
 std::string passTable(const ReplayResult& result) {
   std::string table = fmt::format("{:<22} {:>10} {:>10} {:>10} {:>8}\n", "pass", "min ms", "median ms", "max ms", "runs");

@@ -18,6 +18,9 @@ std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const Rep
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
 // Chrome trace-event format: one track for GPU passes, one for the host's per-frame phases.
 nlohmann::json buildTrace(const ReplayResult& result);
+// Writes `text` to `path`; throws std::runtime_error "cannot write PATH" on failure.
+void writeText(const std::filesystem::path& path, const std::string& text);
+// json.dump(2) and a newline, through writeText.
 void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
 // Per-pass table (min / median / max GPU ms over all timed runs) for the terminal.
 std::string passTable(const ReplayResult& result);

@@ -1,20 +1,14 @@
 #include "report/temporal_plot.h"
 
 #include <cmath>
-#include <fstream>
 
 #include <fmt/format.h>
 
+#include "report/run_outputs.h"
 #include "report/svg_plot.h"
 
 namespace aor {
 namespace {
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-}
 
 PlotSeries perFrameSeries(const nlohmann::json& frames, const std::string& key, const std::string& name) {
   PlotSeries s{name, {}, {}};
