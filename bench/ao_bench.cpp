@@ -70,10 +70,9 @@ struct Measured {
 
 class Harness {
  public:
-  explicit Harness(Options o) : options_(std::move(o)) { createContext(vk_, {options_.device, false}); }
-  ~Harness() { destroyContext(vk_); }
+  explicit Harness(Options o) : options_(std::move(o)), context_({options_.device, false}) {}
   const Options& options() const { return options_; }
-  const DeviceInfo& device() const { return vk_.info; }
+  const DeviceInfo& device() const { return context_.vk.info; }
 
   int warmupRuns(double executionMs) const {
     int byTime = int(std::ceil(options_.warmupMs / std::max(executionMs, 0.001)));
@@ -94,11 +93,11 @@ class Harness {
     replay.settings.slices += options_.extraSlices;
     replay.frameBegin = 0;
     replay.frameEnd = 1;
-    auto probe = replayCapture(vk_, capture, replay, nullptr);
+    auto probe = replayCapture(context_.vk, capture, replay, nullptr);
     replay.frameEnd = 2;
     replay.repeat = options_.reps;
     replay.warmup = warmupRuns(probe.frames.front().gpuWallMs);
-    auto result = replayCapture(vk_, capture, replay, nullptr);
+    auto result = replayCapture(context_.vk, capture, replay, nullptr);
     Measured m;
     const auto& frame = result.frames.back();
     m.pipelineMs.assign(size_t(options_.reps), 0.0);
@@ -112,7 +111,7 @@ class Harness {
 
  private:
   Options options_;
-  VulkanContext vk_;
+  ContextScope context_;
   std::map<decltype(Config{}.key()), Measured> measured_;
 };
 

@@ -38,14 +38,6 @@ struct RunArgs {
   std::string expect;  // thresholds file (report/expectations.h)
 };
 
-// Owns the Vulkan context for one command so it is destroyed (and its last validation messages
-// counted) before the command decides whether it succeeded.
-struct ContextScope {
-  VulkanContext vk;
-  explicit ContextScope(const ContextOptions& options) { createContext(vk, options); }
-  ~ContextScope() { destroyContext(vk); }
-};
-
 void printProgress(int done, int total) {
   if (!isatty(STDERR_FILENO)) return;
   fmt::print(stderr, "\rreplaying frame {}/{}", done, total);
@@ -111,8 +103,7 @@ int runCommand(const RunArgs& args) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
       analyzeFrame(analysis, capture, frame, options.settings.temporal, noHistory);
     });
-    vkDeviceWaitIdle(context.vk.device);
-    destroyContext(context.vk);
+    destroyContext(context.vk);  // waits for the device; the last validation messages arrive here
     validationMessages = context.vk.validationMessageCount();
   }
   auto report = buildReport(capture, options, result);

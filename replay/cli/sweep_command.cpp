@@ -36,12 +36,6 @@ struct SweepArgs {
   std::string device;
 };
 
-struct SweepContext {
-  VulkanContext vk;
-  explicit SweepContext(const std::string& device) { createContext(vk, {device, false}); }
-  ~SweepContext() { destroyContext(vk); }
-};
-
 // Reference visibility per frame index: the capture's ray-traced one when every replayed frame
 // has it, else the screen-space reference technique run once with the base settings.
 struct SweepReference {
@@ -119,7 +113,7 @@ int sweepCommand(const SweepArgs& args) {
   SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
   std::vector<SweepRow> rows;
   {
-    SweepContext context(args.device);
+    ContextScope context({args.device, false});
     info.device = context.vk.info.name;
     auto reference = sweepReference(context.vk, capture, options);
     info.referenceKind = reference.kind;
@@ -127,7 +121,6 @@ int sweepCommand(const SweepArgs& args) {
       fmt::print(stderr, "[{}/{}] {}\n", i + 1, configs.size(), configs[i].name);
       rows.push_back(measure(context.vk, capture, options, configs[i], reference));
     }
-    vkDeviceWaitIdle(context.vk.device);
   }
   markPareto(rows);
   writeJson(out.staging() / "sweep.json", sweepJson(info, rows));

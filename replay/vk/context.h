@@ -50,4 +50,14 @@ std::vector<DeviceInfo> listDevices();
 void createContext(VulkanContext& context, const ContextOptions& options);
 void destroyContext(VulkanContext& context);
 
+// Owns the Vulkan context for one command (or benchmark harness): created on construction,
+// destroyed at the end of the scope. A command that must count the last validation messages
+// before deciding whether it succeeded calls destroyContext(vk) itself; the destructor then finds
+// nothing left to destroy.
+struct ContextScope {
+  VulkanContext vk;
+  explicit ContextScope(const ContextOptions& options) { createContext(vk, options); }
+  ~ContextScope() { destroyContext(vk); }
+};
+
 }  // namespace aor
