@@ -28,8 +28,7 @@ struct SweepArgs {
   std::string capture;
   std::string presets = "low,medium,high,ultra";
   std::vector<std::string> grid;
-  std::vector<std::string> assignments;
-  std::string frames;
+  SettingsOptions settings;  // only --set and --frames; preset and technique stay at their defaults
   int repeat = 3;
   int warmup = 1;
   std::string out;
@@ -93,12 +92,9 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
 
 int sweepCommand(const SweepArgs& args) {
   Capture capture = loadCapture(args.capture);
-  SettingsOptions parsed;
-  parsed.assignments = args.assignments;
-  parsed.frames = args.frames;
   ReplayOptions options;
-  options.settings = parsed.resolve(capture);  // radius from the capture, then --set
-  std::tie(options.frameBegin, options.frameEnd) = parsed.frameRange(capture);
+  options.settings = args.settings.resolve(capture);  // radius from the capture, then --set
+  std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   std::vector<std::string> presets;
@@ -144,8 +140,8 @@ void registerSweepCommand(CLI::App& app) {
   cmd->add_option("--presets", args->presets, "comma-separated presets to run")->capture_default_str();
   cmd->add_option("--grid", args->grid,
                   "KEY=v1,v2,..., repeatable: every preset is run with every combination (keys: --set keys, technique)");
-  cmd->add_option("--set", args->assignments, "KEY=VALUE applied to every configuration, before the grid");
-  cmd->add_option("--frames", args->frames, "half-open frame range A:B (default: all)");
+  cmd->add_option("--set", args->settings.assignments, "KEY=VALUE applied to every configuration, before the grid");
+  cmd->add_option("--frames", args->settings.frames, "half-open frame range A:B (default: all)");
   cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
