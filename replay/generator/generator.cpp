@@ -21,9 +21,7 @@ void fail(const std::string& field, const std::string& problem) {
 }  // namespace
 
 void validateOptions(const GeneratorOptions& o) {
-  const auto scenes = sceneNames();
-  if (std::find(scenes.begin(), scenes.end(), o.scene) == scenes.end())
-    fail("scene", "unknown scene '" + o.scene + "' (expected one of: " + joined(scenes) + ")");
+  (void)sceneInfo(o.scene);  // throws InputError "unknown scene ..." for names it does not know
   const auto paths = pathNames();
   if (std::find(paths.begin(), paths.end(), o.path) == paths.end())
     fail("path", "unknown camera path '" + o.path + "' (expected one of: " + joined(paths) + ")");
