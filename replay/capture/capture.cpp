@@ -243,12 +243,6 @@ fs::path resolveInFolder(const fs::path& folderAbs, const fs::path& folderCanoni
   return abs;
 }
 
-std::string presentChannels(const ExrHeaderDetail& h) {
-  std::vector<std::string> names;
-  for (const auto& [name, kind] : h.channels) names.push_back(name);
-  return names.empty() ? std::string("none") : join(names);
-}
-
 // A channel that is not one of ours but starts like one ("normal.x", "Depth", "visibilty") is
 // almost certainly a misspelling that would otherwise be silently ignored. Other channels
 // (e.g. "albedo.R") are ignored.
@@ -270,6 +264,20 @@ void checkSize(const ExrHeaderDetail& h, int width, int height, const Where& w) 
     fail(w, "", fmt::format("image is {}x{} but capture.json says {}x{}", h.width, h.height, width, height));
 }
 
+void checkFloatChannel(ExrChannelKind kind, const std::string& name, const Where& w) {
+  if (kind != ExrChannelKind::Float) fail(w, name, fmt::format("has type {}, expected FLOAT", detail::kindName(kind)));
+}
+
+// The FLOAT channel `name` that a `what` (G-buffer, reference) cannot do without.
+void requireFloatChannel(const ExrHeaderDetail& h, const std::string& name, const char* what, const Where& w) {
+  auto it = h.channels.find(name);
+  if (it == h.channels.end())
+    fail(w, name,
+         fmt::format("missing; a {} needs a FLOAT channel named {} (channels present: {})", what, name,
+                     detail::channelList(h)));
+  checkFloatChannel(it->second, name, w);
+}
+
 struct Layout {
   bool normals = false;
   bool depth2 = false;
@@ -277,12 +285,7 @@ struct Layout {
 
 Layout checkGBufferHeader(const ExrHeaderDetail& h, int width, int height, const Where& w) {
   checkSize(h, width, height, w);
-  auto depth = h.channels.find("depth");
-  if (depth == h.channels.end())
-    fail(w, "depth",
-         "missing; a G-buffer needs a FLOAT channel named depth (channels present: " + presentChannels(h) + ")");
-  if (depth->second != ExrChannelKind::Float)
-    fail(w, "depth", fmt::format("has type {}, expected FLOAT", detail::kindName(depth->second)));
+  requireFloatChannel(h, "depth", "G-buffer", w);
   std::vector<std::string> present, missing;
   for (const auto& n : kNormalChannels) (h.channels.count(n) ? present : missing).push_back(n);
   if (!present.empty() && !missing.empty())
@@ -295,8 +298,7 @@ Layout checkGBufferHeader(const ExrHeaderDetail& h, int width, int height, const
   layout.normals = !present.empty();
   auto depth2 = h.channels.find("depth2");
   if (depth2 != h.channels.end()) {
-    if (depth2->second != ExrChannelKind::Float)
-      fail(w, "depth2", fmt::format("has type {}, expected FLOAT", detail::kindName(depth2->second)));
+    checkFloatChannel(depth2->second, "depth2", w);
     layout.depth2 = true;
   }
   checkMisspelledChannels(h, kGBufferChannels, {"depth", "normal"}, w);
@@ -305,12 +307,7 @@ Layout checkGBufferHeader(const ExrHeaderDetail& h, int width, int height, const
 
 void checkReferenceHeader(const ExrHeaderDetail& h, int width, int height, const Where& w) {
   checkSize(h, width, height, w);
-  auto vis = h.channels.find("visibility");
-  if (vis == h.channels.end())
-    fail(w, "visibility",
-         "missing; a reference needs a FLOAT channel named visibility (channels present: " + presentChannels(h) + ")");
-  if (vis->second != ExrChannelKind::Float)
-    fail(w, "visibility", fmt::format("has type {}, expected FLOAT", detail::kindName(vis->second)));
+  requireFloatChannel(h, "visibility", "reference", w);
   checkMisspelledChannels(h, {"visibility"}, {"visib"}, w);
 }
 

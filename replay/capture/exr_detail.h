@@ -22,6 +22,9 @@ struct ExrHeaderDetail {
   std::map<std::string, ExrChannelKind> channels;
 };
 
+// The header's channel names, sorted, comma-separated; "none" when there are none.
+std::string channelList(const ExrHeaderDetail& h);
+
 // Reads and checks the header of `path`: the file exists, is an OpenEXR image, its data window
 // is sane, no channel is subsampled, and (for single-part scan-line files) every chunk of pixel
 // data listed in the offset table lies inside the file, so truncated files are caught here.

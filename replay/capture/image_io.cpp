@@ -44,6 +44,15 @@ const char* kindName(ExrChannelKind kind) {
   return "?";
 }
 
+std::string channelList(const ExrHeaderDetail& h) {
+  std::string s;
+  for (const auto& [name, kind] : h.channels) {
+    if (!s.empty()) s += ", ";
+    s += name;
+  }
+  return s.empty() ? std::string("none") : s;
+}
+
 std::string displayPath(const fs::path& path) {
   std::error_code ec;
   fs::path abs = fs::absolute(path, ec);
@@ -179,15 +188,6 @@ ExrChannelKind kindOf(Imf::PixelType t) {
     case Imf::FLOAT: return ExrChannelKind::Float;
     default: return ExrChannelKind::Uint;
   }
-}
-
-std::string channelList(const ExrHeaderDetail& h) {
-  std::string s;
-  for (const auto& [name, kind] : h.channels) {
-    if (!s.empty()) s += ", ";
-    s += name;
-  }
-  return s.empty() ? std::string("none") : s;
 }
 
 // Fills `out` from an open file's header; shared by header-only and pixel reading.
