@@ -65,17 +65,14 @@ class RayScene {
 
   const SceneInfo& info() const;
   size_t triangleCount() const;
-  // Bounds of the triangle meshes (excluding the analytic floor); for tests.
-  glm::dvec3 meshMin() const;
+  // Upper bound of the triangle meshes (excluding the analytic floor); for tests.
   glm::dvec3 meshMax() const;
 
   // Closest hit with t in [tnear, tfar]; direction need not be normalised (t is in its units).
   std::optional<SurfaceHit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                       double tnear, double tfar) const;
-  // Any hit with t in [0, tfar].
-  bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tfar) const;
-  // Number of the `count` rays from one origin that are unoccluded within [0, tfar] (traced as
-  // Embree ray packets; same answers as occluded() up to float rounding inside Embree).
+  // Number of the `count` rays from one origin that are unoccluded (no hit with t in [0, tfar]),
+  // traced as Embree ray packets.
   int countUnoccluded(const glm::dvec3& origin, const glm::dvec3* directions, int count, double tfar) const;
 
  private:

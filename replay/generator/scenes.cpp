@@ -486,7 +486,7 @@ struct RayScene::Impl {
   RTCScene scene = nullptr;
   unsigned meshGeom = RTC_INVALID_GEOMETRY_ID;
   unsigned primGeom = RTC_INVALID_GEOMETRY_ID;
-  dvec3 meshMin{0.0}, meshMax{0.0};
+  dvec3 meshMax{0.0};
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -508,7 +508,7 @@ struct RayScene::Impl {
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     if (mesh.triangleCount() > 0) {
       const size_t nv = mesh.vertices.size() / 3;
-      meshMin = dvec3(std::numeric_limits<double>::max());
+      dvec3 meshMin(std::numeric_limits<double>::max());
       meshMax = -meshMin;
       for (size_t v = 0; v < nv; ++v) {
         const dvec3 p(mesh.vertices[3 * v], mesh.vertices[3 * v + 1], mesh.vertices[3 * v + 2]);
@@ -619,7 +619,6 @@ RayScene::~RayScene() = default;
 
 const SceneInfo& RayScene::info() const { return impl_->info; }
 size_t RayScene::triangleCount() const { return impl_->mesh.triangleCount(); }
-glm::dvec3 RayScene::meshMin() const { return impl_->meshMin; }
 glm::dvec3 RayScene::meshMax() const { return impl_->meshMax; }
 
 std::optional<SurfaceHit> RayScene::intersect(const dvec3& origin, const dvec3& direction, double tnear,
@@ -642,24 +641,6 @@ std::optional<SurfaceHit> RayScene::intersect(const dvec3& origin, const dvec3& 
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   return impl_->refine(rh.hit.geomID, rh.hit.primID, rh.ray.tfar, origin, direction);
-}
-
-bool RayScene::occluded(const dvec3& origin, const dvec3& direction, double tfar) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRay r;
-  std::memset(&r, 0, sizeof(r));
-  r.org_x = static_cast<float>(origin.x);
-  r.org_y = static_cast<float>(origin.y);
-  r.org_z = static_cast<float>(origin.z);
-  r.dir_x = static_cast<float>(direction.x);
-  r.dir_y = static_cast<float>(direction.y);
-  r.dir_z = static_cast<float>(direction.z);
-  r.tnear = 0.0f;
-  r.tfar = static_cast<float>(tfar);
-  r.mask = 0xffffffffu;
-  rtcOccluded1(impl_->scene, &ctx, &r);
-  return r.tfar < 0.0f;
 }
 
 int RayScene::countUnoccluded(const dvec3& origin, const dvec3* directions, int count, double tfar) const {
