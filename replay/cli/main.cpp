@@ -1,8 +1,6 @@
 // aoreplay: replays AO captures through the render graph and reports time, error and stability.
 // Exit codes: 0 success, 1 failed run (e.g. validation messages), 2 bad usage or bad input,
 // 3 no usable Vulkan device.
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 

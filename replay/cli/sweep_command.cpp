@@ -1,7 +1,5 @@
 // `aoreplay sweep`: replays a capture under several configurations in one Vulkan context and
 // puts each one's GPU time next to its error against the reference (table, sweep.json/.csv/.svg).
-#include <unistd.h>
-
 #include <filesystem>
 #include <map>
 #include <memory>

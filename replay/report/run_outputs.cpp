@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -78,7 +77,6 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
                       {"resources", result.resources}};
 
   nlohmann::json frames = nlohmann::json::array();
-  std::vector<double> decode, upload, gpu, readback, write;
   for (const auto& f : result.frames) {
     nlohmann::json frame{{"index", f.index}, {"history", f.historyValid ? "valid" : "reset"}};
     if (!f.historyValid) frame["reset_reason"] = f.resetReason;
