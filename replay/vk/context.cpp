@@ -158,7 +158,6 @@ void createDevice(VulkanContext& ctx) {
   features13.synchronization2 = VK_TRUE;
   VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
   features12.scalarBlockLayout = VK_TRUE;
-  features12.hostQueryReset = VK_TRUE;
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features12};
   features.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
 
@@ -201,7 +200,6 @@ std::vector<DeviceInfo> listDevices() {
 }
 
 void createContext(VulkanContext& ctx, const ContextOptions& options) {
-  ctx.validationEnabled = options.validate;
   ctx.instance = createInstance(options.validate);
   if (options.validate) {
     VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};

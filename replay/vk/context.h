@@ -1,7 +1,6 @@
 #pragma once
 // Headless Vulkan instance + device with one compute queue. Lavapipe is the default device so the
 // tool runs on any machine; --device picks another by index or name substring.
-#include <atomic>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -37,7 +36,6 @@ struct VulkanContext {
   DeviceInfo info;
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
-  bool validationEnabled = false;
 
   // Validation messages (warnings and errors); any one fails a --validate run.
   std::mutex messageMutex;
