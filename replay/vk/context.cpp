@@ -112,6 +112,12 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
   return devices;
 }
 
+std::vector<DeviceInfo> describeDevices(const std::vector<VkPhysicalDevice>& devices) {
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
+  return infos;
+}
+
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
@@ -136,18 +142,24 @@ uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string&
   throw NoDeviceError(fmt::format("--device {}: no device name contains it; devices:{}", selector, names));
 }
 
-uint32_t computeQueueFamily(VkPhysicalDevice device) {
+// Sets queueFamily to the first compute queue family that also has timestamps, and
+// timestampValidBits to that family's.
+void selectQueueFamily(VulkanContext& ctx) {
   uint32_t count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
-  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-  for (uint32_t i = 0; i < count; ++i)  // a compute queue that also has timestamps
-    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && families[i].timestampValidBits > 0) return i;
+  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &count, families.data());
+  for (uint32_t i = 0; i < count; ++i)
+    if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && families[i].timestampValidBits > 0) {
+      ctx.queueFamily = i;
+      ctx.timestampValidBits = families[i].timestampValidBits;
+      return;
+    }
   throw NoDeviceError("the selected device has no compute queue with timestamp support");
 }
 
 void createDevice(VulkanContext& ctx) {
-  ctx.queueFamily = computeQueueFamily(ctx.physicalDevice);
+  selectQueueFamily(ctx);
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   queueInfo.queueFamilyIndex = ctx.queueFamily;
@@ -192,9 +204,7 @@ VkSampler createSampler(VkDevice device, VkFilter filter) {
 
 std::vector<DeviceInfo> listDevices() {
   VkInstance instance = createInstance(false);
-  std::vector<DeviceInfo> infos;
-  auto devices = physicalDevices(instance);
-  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
+  auto infos = describeDevices(physicalDevices(instance));
   vkDestroyInstance(instance, nullptr);
   return infos;
 }
@@ -213,8 +223,7 @@ void createContext(VulkanContext& ctx, const ContextOptions& options) {
     VK_CHECK(create(ctx.instance, &info, nullptr, &ctx.messenger));
   }
   auto devices = physicalDevices(ctx.instance);
-  std::vector<DeviceInfo> infos;
-  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
+  auto infos = describeDevices(devices);
   uint32_t chosen = selectDevice(infos, options.deviceSelector);
   ctx.physicalDevice = devices[chosen];
   ctx.info = infos[chosen];
@@ -223,12 +232,7 @@ void createContext(VulkanContext& ctx, const ContextOptions& options) {
   vkGetPhysicalDeviceProperties(ctx.physicalDevice, &props);
   ctx.timestampPeriodNs = props.limits.timestampPeriod;
   vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memoryProperties);
-  createDevice(ctx);
-  uint32_t count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &count, nullptr);
-  std::vector<VkQueueFamilyProperties> families(count);
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice, &count, families.data());
-  ctx.timestampValidBits = families[ctx.queueFamily].timestampValidBits;
+  createDevice(ctx);  // also picks the queue family and reads its timestampValidBits
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
