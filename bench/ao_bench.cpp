@@ -153,19 +153,27 @@ const std::vector<std::pair<int, int>> kScalingSliceSteps{{1, 2}, {2, 2}, {2, 4}
 
 std::pair<int, int> scalingSize();
 
+// The scaling fit's configurations: the high preset with each of kScalingSliceSteps, at
+// scalingSize(). Registration and the fit both take them from here.
+std::vector<Config> scalingConfigs() {
+  auto [w, h] = scalingSize();
+  std::vector<Config> configs;
+  for (auto [slices, steps] : kScalingSliceSteps) {
+    Config c = makeConfig(w, h, "high", 1);
+    c.settings.slices = slices;
+    c.settings.steps = steps;
+    configs.push_back(c);
+  }
+  return configs;
+}
+
 void registerAll() {
   const auto& o = harness->options();
   for (auto [w, h] : o.sizes) {
     for (const auto& preset : o.presets) registerConfig(makeConfig(w, h, preset, 1), true);
     registerConfig(makeConfig(w, h, "high", 0), false);  // bent=0 vs bent=1
   }
-  auto [w, h] = scalingSize();
-  for (auto [slices, steps] : kScalingSliceSteps) {
-    Config c = makeConfig(w, h, "high", 1);
-    c.settings.slices = slices;
-    c.settings.steps = steps;
-    registerSeries("gtao/" + c.label(), c, "gtao");
-  }
+  for (const auto& c : scalingConfigs()) registerSeries("gtao/" + c.label(), c, "gtao");
 }
 
 std::pair<int, int> scalingSize() {
@@ -180,13 +188,10 @@ ScalingInput scalingInput() {
   for (auto [w, h] : o.sizes)
     if (const auto* m = harness->alreadyMeasured(makeConfig(w, h, "high", 1)))
       in.byPixels.push_back({double(w) * h, medianOf(m->pipelineMs)});
+  for (const auto& c : scalingConfigs())
+    if (const auto* m = harness->alreadyMeasured(c))
+      in.bySliceSteps.push_back({double(c.settings.slices * c.settings.steps), medianOf(m->passMs.at("gtao"))});
   auto [w, h] = scalingSize();
-  for (auto [slices, steps] : kScalingSliceSteps) {
-    Config c = makeConfig(w, h, "high", 1);
-    c.settings.slices = slices;
-    c.settings.steps = steps;
-    if (const auto* m = harness->alreadyMeasured(c)) in.bySliceSteps.push_back({double(slices * steps), medianOf(m->passMs.at("gtao"))});
-  }
   in.sliceStepsSize = fmt::format("{}x{}", w, h);
   return in;
 }
