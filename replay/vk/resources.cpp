@@ -1,16 +1,30 @@
 #include "vk/resources.h"
 
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "vk/context.h"
 #include "vk/vk_check.h"
 
 namespace aor {
+namespace {
 
-uint32_t findMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags) {
+std::optional<uint32_t> matchingMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags) {
   const auto& props = ctx.memoryProperties;
   for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
     if ((typeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
+  return std::nullopt;
+}
+
+bool hasMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags) {
+  return matchingMemoryType(ctx, typeBits, flags).has_value();
+}
+
+}  // namespace
+
+uint32_t findMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags flags) {
+  if (auto type = matchingMemoryType(ctx, typeBits, flags)) return *type;
   throw std::runtime_error(fmt::format("no Vulkan memory type with flags {:#x} among bits {:#x}", flags, typeBits));
 }
 
@@ -83,9 +97,12 @@ GpuBuffer createHostBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBuffer
   VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &buffer.buffer));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, buffer.buffer, &req);
-  buffer.memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits,
-                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
-                      .memory;
+  VkMemoryPropertyFlags flags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  // The host reads what the GPU writes into a read-back buffer: uncached (write-combined) memory
+  // makes those reads slow on discrete GPUs, so cached memory is preferred where there is some.
+  if ((usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) && hasMemoryType(ctx, req.memoryTypeBits, flags | VK_MEMORY_PROPERTY_HOST_CACHED_BIT))
+    flags |= VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  buffer.memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits, flags).memory;
   VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, buffer.memory, 0));
   VK_CHECK(vkMapMemory(ctx.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
   return buffer;
