@@ -12,6 +12,7 @@
 #include <mutex>
 #include <set>
 #include <stdexcept>
+#include <thread>
 #include <type_traits>
 
 #include <Imath/ImathBox.h>
@@ -23,6 +24,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfVersion.h>
 #include <fmt/format.h>
 #include <png.h>
@@ -74,11 +76,14 @@ using detail::ExrHeaderDetail;
 
 // OpenEXR allocates tables from header fields before anything else is checked; these limits make
 // a damaged header fail with an exception instead of a huge allocation. Process-wide, set once.
-void ensureOpenExrLimits() {
+void configureOpenExr() {
   static std::once_flag once;
   std::call_once(once, [] {
     Imf::Header::setMaxImageSize(4 * detail::kMaxImageSide, 4 * detail::kMaxImageSide);
     Imf::Header::setMaxTileSize(4096, 4096);
+    // Line blocks are (de)compressed on OpenEXR's own pool: the first frame's decode is on the
+    // replay's critical path. The pixels do not depend on the thread count.
+    Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
   });
 }
 
@@ -221,7 +226,7 @@ std::string exceptionText(const std::exception& e) {
 namespace detail {
 
 ExrHeaderDetail readExrHeaderDetail(const fs::path& path, const std::string& display, std::optional<int> frame) {
-  ensureOpenExrLimits();
+  configureOpenExr();
   checkIsFile(path, display, frame);
   ExrHeaderDetail info;
   int version = 0, compression = 0;
@@ -245,7 +250,7 @@ std::map<std::string, std::vector<float>> readExrChannelsDetail(const fs::path& 
                                                                 const std::vector<std::string>& names,
                                                                 std::optional<int> expectWidth,
                                                                 std::optional<int> expectHeight) {
-  ensureOpenExrLimits();
+  configureOpenExr();
   checkIsFile(path, display, frame);
   std::map<std::string, std::vector<float>> planes;
   std::unique_ptr<Imf::InputFile> opened;
@@ -301,7 +306,7 @@ void writeExr(const fs::path& path, int width, int height, const std::vector<Exr
     if (!seen.insert(ch.name).second) throw std::invalid_argument("writeExr: duplicate channel " + ch.name);
     if (!ch.data) throw std::invalid_argument("writeExr: channel " + ch.name + " has no data");
   }
-  ensureOpenExrLimits();
+  configureOpenExr();
   const std::string display = path.string();
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
 
