@@ -118,6 +118,10 @@ int runCommand(const RunArgs& args) {
              options.frameBegin, options.frameEnd, toJson(options.settings).dump());
   fmt::print("{}", passTable(result));
   for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
+  HostOverhead overhead = hostOverhead(result);
+  fmt::print("wall: {:.1f} ms for {} frame(s), {:.1f} frames/s; host overhead {:.1f} ms ({:.1f} % of wall)\n",
+             result.wallMs, result.frames.size(), report["replay_fps"].get<double>(), overhead.ms,
+             100.0 * overhead.fractionOfWall);
   if (args.validate && validationMessages > 0) {
     fmt::print(stderr, "aoreplay: {} validation message(s); the run failed and wrote no results\n", validationMessages);
     return kExitFailed;

@@ -1,5 +1,6 @@
 #include "pipeline/replayer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -20,31 +21,44 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-// A frame made ready for the GPU on the worker thread: decoded, normals packed to the staging
-// layout, inputs checked, so the main thread only copies while the GPU waits.
-struct DecodedFrame {
-  GBuffer gbuffer;
-  std::vector<uint16_t> packedNormals;  // RGBA16F, empty without normals
-  int64_t invalidDepthPixels = 0, invalidNormalPixels = 0;
-  float medianDistance = 0;  // for the camera-jump limit; 0 when there is no temporal pass
-  double decodeMs = 0;
+// Host-visible staging for one frame in flight: G-buffer uploads and the read-back of the result.
+struct StagingSlot {
+  GpuBuffer depth, normals, readback;
 };
 
-// Host-visible staging: G-buffer uploads and the read-back of the result. Destroyed in one place.
+// Two slots, used by alternate frames: while the GPU runs frame N from one slot, the decode worker
+// fills the other with frame N+1, and the sink of frame N-1 reads its result from the read-back of
+// that same other slot (before frame N+1 is submitted). Destroyed in one place.
 struct StagingBuffers {
   VulkanContext& vk;
-  GpuBuffer depth, normals, readback;
+  StagingSlot slots[2];
   StagingBuffers(VulkanContext& v, const Capture& capture, bool bent) : vk(v) {
     VkDeviceSize pixels = VkDeviceSize(capture.width) * VkDeviceSize(capture.height);
-    depth = createHostBuffer(vk, pixels * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    if (capture.hasNormals) normals = createHostBuffer(vk, pixels * 4 * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    readback = createHostBuffer(vk, pixels * graph::bytesPerPixel(aoFormat(bent)), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    for (auto& slot : slots) {
+      slot.depth = createHostBuffer(vk, pixels * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+      if (capture.hasNormals)
+        slot.normals = createHostBuffer(vk, pixels * 4 * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+      slot.readback = createHostBuffer(vk, pixels * graph::bytesPerPixel(aoFormat(bent)), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    }
   }
   ~StagingBuffers() {
-    destroyBuffer(vk, depth);
-    destroyBuffer(vk, normals);
-    destroyBuffer(vk, readback);
+    for (auto& slot : slots) {
+      destroyBuffer(vk, slot.depth);
+      destroyBuffer(vk, slot.normals);
+      destroyBuffer(vk, slot.readback);
+    }
   }
+  StagingSlot& forFrame(int index) { return slots[index % 2]; }
+};
+
+// A frame made ready for the GPU on the worker thread: decoded, inputs checked and written into its
+// staging slot, so the replay thread only records and submits.
+struct DecodedFrame {
+  GBuffer gbuffer;
+  int64_t invalidDepthPixels = 0, invalidNormalPixels = 0;
+  float medianDistance = 0;  // for the camera-jump limit; 0 when there is no temporal pass
+  double startMs = 0;        // since the replay started
+  double decodeMs = 0, uploadMs = 0;
 };
 
 int64_t countInvalidDepth(const GBuffer& g) {
@@ -53,10 +67,9 @@ int64_t countInvalidDepth(const GBuffer& g) {
   return invalid;
 }
 
-int64_t packNormals(const GBuffer& g, std::vector<uint16_t>& packed) {
+// Writes RGBA16F (w = 0) into `out`, which holds 4 halves per pixel.
+int64_t packNormals(const GBuffer& g, uint16_t* out) {
   size_t pixels = g.normals.size() / 3;
-  packed.resize(pixels * 4);
-  uint16_t* out = packed.data();
   int64_t invalid = 0;
   for (size_t i = 0; i < pixels; ++i) {
     bool finite = true;
@@ -82,21 +95,15 @@ const std::vector<float>& halfToFloat() {
   return table;
 }
 
-// The read-back is copied out of the mapped buffer on the replay thread (the next frame overwrites
-// it) and converted to floats by the frame's sink worker, off the critical path.
-std::vector<uint16_t> copyReadback(const GpuBuffer& readback, int width, int height, bool bent) {
-  size_t count = size_t(width) * size_t(height) * (bent ? 4 : 1);
-  const auto* halves = static_cast<const uint16_t*>(readback.mapped);
-  return std::vector<uint16_t>(halves, halves + count);
-}
-
-FrameOutput decodeReadback(const std::vector<uint16_t>& raw, int index, int width, int height, bool bent) {
+// Converted to floats by the frame's sink worker straight from the mapped read-back of its slot,
+// which no frame overwrites before the sink has finished (StagingBuffers).
+FrameOutput decodeReadback(const GpuBuffer& readback, int index, int width, int height, bool bent) {
   FrameOutput out;
   out.index = index;
   out.width = width;
   out.height = height;
   size_t pixels = size_t(width) * size_t(height);
-  const uint16_t* halves = raw.data();
+  const auto* halves = static_cast<const uint16_t*>(readback.mapped);
   const float* toFloat = halfToFloat().data();
   out.visibility.resize(pixels);
   if (bent) out.bent.resize(pixels * 3);
@@ -177,6 +184,15 @@ FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelin
 
 }  // namespace
 
+HostOverhead hostOverhead(const ReplayResult& result) {
+  double gpu = 0;
+  for (const auto& f : result.frames) gpu += f.gpuWallMs;
+  HostOverhead h;
+  h.ms = std::max(0.0, result.wallMs - gpu);
+  h.fractionOfWall = result.wallMs > 0 ? h.ms / result.wallMs : 0.0;
+  return h;
+}
+
 AoSettings settingsForCapture(const Capture& capture, const AoSettings& base, bool radiusGiven) {
   AoSettings s = base;
   if (!radiusGiven && capture.scene.contains("ao_radius") && capture.scene["ao_radius"].is_number()) {
@@ -205,14 +221,21 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
   result.settings = settings;
   auto replayStart = Clock::now();
 
-  auto decode = [&capture, temporalWanted](int index) {
+  StagingBuffers staging(vk, capture, bent);
+  // Runs on a worker while the GPU runs the previous frame from the other staging slot.
+  auto decode = [&capture, &staging, temporalWanted, replayStart](int index) {
     auto t = Clock::now();
     DecodedFrame d;
+    d.startMs = std::chrono::duration<double, std::milli>(t - replayStart).count();
     d.gbuffer = loadGBuffer(capture, index);
     d.invalidDepthPixels = countInvalidDepth(d.gbuffer);
-    if (capture.hasNormals) d.invalidNormalPixels = packNormals(d.gbuffer, d.packedNormals);
     if (temporalWanted) d.medianDistance = medianViewDistance(d.gbuffer.depth, capture.frames[size_t(index)].projection);
     d.decodeMs = msSince(t);
+    t = Clock::now();
+    StagingSlot& slot = staging.forFrame(index);
+    std::memcpy(slot.depth.mapped, d.gbuffer.depth.data(), d.gbuffer.depth.size() * sizeof(float));
+    if (capture.hasNormals) d.invalidNormalPixels = packNormals(d.gbuffer, static_cast<uint16_t*>(slot.normals.mapped));
+    d.uploadMs = msSince(t);
     return d;
   };
   auto next = std::async(std::launch::async, decode, begin);  // overlaps the set-up below
@@ -220,16 +243,21 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
   PassPipelines pipelines(vk);
   GraphResources resources(vk);
   GraphExecutor executor(vk);
-  StagingBuffers staging(vk, capture, bent);
-  AoFrameBuffers buffers{&staging.depth, capture.hasNormals ? &staging.normals : nullptr, &staging.readback};
   HistoryTracker history;
-  // A frame's sink (image writing, analysis) runs on a worker thread while the next frame is
-  // uploaded and run on the GPU; sinks run one at a time, in frame order. Its time is the frame's
-  // write time.
-  std::future<double> pendingSink;
+  // A frame's sink (read-back conversion, image writing, analysis) runs on a worker thread while the
+  // next frame runs on the GPU; sinks run one at a time, in frame order.
+  struct SinkTimes {
+    double startMs = 0, readbackMs = 0, writeMs = 0;
+  };
+  std::future<SinkTimes> pendingSink;
   size_t pendingRecord = 0;
   auto finishPendingSink = [&] {
-    if (pendingSink.valid()) result.frames[pendingRecord].writeMs = pendingSink.get();
+    if (!pendingSink.valid()) return;
+    SinkTimes times = pendingSink.get();
+    auto& record = result.frames[pendingRecord];
+    record.sinkStartMs = times.startMs;
+    record.readbackMs = times.readbackMs;
+    record.writeMs = times.writeMs;
   };
 
   for (int index = begin; index < end; ++index) {
@@ -237,16 +265,13 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     record.index = index;
     record.hostStartMs = msSince(replayStart);
     DecodedFrame decoded = next.get();
+    record.workerStartMs = decoded.startMs;
     record.decodeMs = decoded.decodeMs;
-    if (index + 1 < end) next = std::async(std::launch::async, decode, index + 1);
-
-    auto t = Clock::now();
-    std::memcpy(staging.depth.mapped, decoded.gbuffer.depth.data(), decoded.gbuffer.depth.size() * sizeof(float));
-    if (capture.hasNormals)
-      std::memcpy(staging.normals.mapped, decoded.packedNormals.data(), decoded.packedNormals.size() * sizeof(uint16_t));
+    record.uploadMs = decoded.uploadMs;
     record.invalidDepthPixels = decoded.invalidDepthPixels;
     record.invalidNormalPixels = decoded.invalidNormalPixels;
-    record.uploadMs = msSince(t);
+    record.waitMs = msSince(replayStart) - record.hostStartMs;
+    if (index + 1 < end) next = std::async(std::launch::async, decode, index + 1);
 
     const auto& frame = capture.frames[size_t(index)];
     FrameCamera camera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
@@ -255,7 +280,9 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     if (history.exists && (history.width != capture.width || history.height != capture.height)) resources.dropHistory();
 
     AoFrameInputs inputs{camera, history.camera, capture.hasNormals, temporalWanted, record.historyValid, settings};
-    t = Clock::now();
+    StagingSlot& slot = staging.forFrame(index);
+    AoFrameBuffers buffers{&slot.depth, capture.hasNormals ? &slot.normals : nullptr, &slot.readback};
+    auto t = Clock::now();
     bool lastFrame = index + 1 == end;
     auto runs = runFrameGraph(inputs, pipelines, resources, executor, buffers, options.warmup, options.repeat, lastFrame);
     record.passes = std::move(runs.passes);
@@ -268,26 +295,26 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
     }
     record.gpuWallMs = msSince(t);
 
-    t = Clock::now();
-    std::vector<uint16_t> readback = sink ? copyReadback(staging.readback, capture.width, capture.height, bent)
-                                          : std::vector<uint16_t>();
-    record.readbackMs = msSince(t);
-
     if (temporalWanted) resources.swapHistory();
     history = {true, capture.width, capture.height, settings, camera, decoded.medianDistance};
-    finishPendingSink();
+    finishPendingSink();  // the previous frame's sink: its slot is the next frame's
     if (sink) {
       pendingRecord = result.frames.size();  // the record pushed below
-      pendingSink = std::async(std::launch::async, [&sink, &capture, bent, index, raw = std::move(readback),
+      pendingSink = std::async(std::launch::async, [&sink, &capture, &slot, bent, index, replayStart,
                                                     frame = std::move(decoded), valid = record.historyValid,
                                                     reason = record.resetReason] {
         auto start = Clock::now();
-        FrameOutput output = decodeReadback(raw, index, capture.width, capture.height, bent);
+        SinkTimes times;
+        times.startMs = std::chrono::duration<double, std::milli>(start - replayStart).count();
+        FrameOutput output = decodeReadback(slot.readback, index, capture.width, capture.height, bent);
+        times.readbackMs = msSince(start);
+        auto written = Clock::now();
         output.gbuffer = &frame.gbuffer;
         output.historyValid = valid;
         output.resetReason = reason;
         sink(output);
-        return msSince(start);
+        times.writeMs = msSince(written);
+        return times;
       });
     }
     result.frames.push_back(std::move(record));

@@ -37,9 +37,14 @@ struct FrameRecord {
   bool historyValid = false;
   std::string resetReason;           // empty when valid
   std::vector<PassTiming> passes;    // live passes in execution order
-  // Host-side wall time of this frame, milliseconds.
-  double decodeMs = 0, uploadMs = 0, gpuWallMs = 0, readbackMs = 0, writeMs = 0;
-  double hostStartMs = 0;            // since the replay started
+  // Host-side wall time of this frame, milliseconds. Decode and upload (writing the staging memory)
+  // run ahead on the decode worker; readback (converting the mapped read-back to floats) and write
+  // (the sink: images, analysis) run behind on the sink worker. Only wait and gpu are on the replay
+  // thread's critical path.
+  double decodeMs = 0, uploadMs = 0, waitMs = 0, gpuWallMs = 0, readbackMs = 0, writeMs = 0;
+  double hostStartMs = 0;            // since the replay started: when the replay thread took the frame
+  double workerStartMs = 0;          // when the decode worker started it
+  double sinkStartMs = 0;            // when the sink worker started it
   int64_t invalidDepthPixels = 0;    // NaN, Inf or outside [0,1]
   int64_t invalidNormalPixels = 0;   // NaN or Inf in a normal component (uploaded as is, ignored by GTAO)
 };
@@ -70,6 +75,14 @@ struct ReplayResult {
   nlohmann::json resources;                 // graphResourcesJson() of the last frame's graph
   double wallMs = 0;
 };
+
+// Time the replay thread spent on anything but the GPU work (submit and wait): waiting for a
+// decode, recording, and the last frame's sink. What the host adds to a replay's wall time.
+struct HostOverhead {
+  double ms = 0;
+  double fractionOfWall = 0;
+};
+HostOverhead hostOverhead(const ReplayResult& result);
 
 // Returns what to record for the frame (its write time is measured by the replayer).
 using FrameSink = std::function<void(const FrameOutput&)>;

@@ -83,8 +83,8 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
     nlohmann::json framePasses = nlohmann::json::object();
     for (const auto& p : f.passes) framePasses[p.name] = summarize(p.durationsMs).median;
     frame["gpu_ms_median"] = framePasses;
-    frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs}, {"gpu", f.gpuWallMs},
-                        {"readback", f.readbackMs}, {"write", f.writeMs}};
+    frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs}, {"wait", f.waitMs},
+                        {"gpu", f.gpuWallMs}, {"readback", f.readbackMs}, {"write", f.writeMs}};
     frame["invalid_depth_pixels"] = f.invalidDepthPixels;
     frame["invalid_normal_pixels"] = f.invalidNormalPixels;
     frames.push_back(frame);
@@ -92,31 +92,38 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   report["frames"] = frames;
   report["wall_ms"] = result.wallMs;
   report["replay_fps"] = result.wallMs > 0 ? 1000.0 * double(result.frames.size()) / result.wallMs : 0.0;
+  HostOverhead overhead = hostOverhead(result);
+  report["host_overhead"] = {{"ms", overhead.ms}, {"fraction_of_wall", overhead.fractionOfWall}};
   return report;
 }
 
 nlohmann::json buildTrace(const ReplayResult& result) {
-  constexpr int kPid = 1, kGpuTrack = 1, kHostTrack = 2;
+  constexpr int kPid = 1, kGpuTrack = 1, kHostTrack = 2, kWorkerTrack = 3, kSinkTrack = 4;
   nlohmann::json events = nlohmann::json::array();
-  events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", kPid}, {"tid", kGpuTrack}, {"args", {{"name", "GPU passes"}}}});
-  events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", kPid}, {"tid", kHostTrack}, {"args", {{"name", "Host"}}}});
+  auto track = [&](int tid, const char* name) {
+    events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", kPid}, {"tid", tid}, {"args", {{"name", name}}}});
+  };
+  track(kGpuTrack, "GPU passes");
+  track(kHostTrack, "Host: replay thread");
+  track(kWorkerTrack, "Host: decode worker");
+  track(kSinkTrack, "Host: sink worker");
   auto slice = [&](const std::string& name, int track, double startMs, double durMs, nlohmann::json args) {
     events.push_back({{"name", name}, {"ph", "X"}, {"pid", kPid}, {"tid", track}, {"ts", startMs * 1000.0},
                       {"dur", durMs * 1000.0}, {"args", std::move(args)}});
   };
   for (const auto& f : result.frames) {
-    double t = f.hostStartMs;
     nlohmann::json args{{"frame", f.index}};
-    // Decode ran ahead on a worker thread; it is drawn where the frame starts for orientation.
-    slice("decode", kHostTrack, t, f.decodeMs, args);
-    slice("upload", kHostTrack, t, f.uploadMs, args);
-    t += f.uploadMs;
+    slice("decode", kWorkerTrack, f.workerStartMs, f.decodeMs, args);
+    slice("upload (staging write)", kWorkerTrack, f.workerStartMs + f.decodeMs, f.uploadMs, args);
+    double t = f.hostStartMs;
+    if (f.waitMs > 0) slice("wait for decode", kHostTrack, t, f.waitMs, args);
+    t += f.waitMs;
     double gpuStart = t;
     slice("gpu (submit + wait)", kHostTrack, t, f.gpuWallMs, args);
-    t += f.gpuWallMs;
-    slice("readback", kHostTrack, t, f.readbackMs, args);
-    t += f.readbackMs;
-    slice("write", kHostTrack, t, f.writeMs, args);
+    if (f.readbackMs + f.writeMs > 0) {
+      slice("readback (to float)", kSinkTrack, f.sinkStartMs, f.readbackMs, args);
+      slice("write", kSinkTrack, f.sinkStartMs + f.readbackMs, f.writeMs, args);
+    }
     // GPU passes of the last timed run, placed at the end of the GPU wait window.
     double lastEnd = 0;
     for (const auto& p : f.passes) lastEnd = std::max(lastEnd, p.startMs + (p.durationsMs.empty() ? 0 : p.durationsMs.back()));

@@ -64,7 +64,42 @@ TEST_F(Cli, RunWritesImagesReportAndTraceWithPerPassTimes) {
   std::set<int> tracks;
   for (const auto& e : trace["traceEvents"])
     if (e["ph"] == "X") tracks.insert(e["tid"].get<int>());
-  EXPECT_EQ(tracks.size(), 2u) << "a GPU track and a host track";
+  EXPECT_EQ(tracks.size(), 4u) << "GPU passes, the replay thread, the decode worker and the sink worker";
+}
+
+// What the host adds to a replay is reported, and decoding runs ahead of the GPU on a worker.
+TEST_F(Cli, ReportBreaksDownHostTimeAndDecodesAheadOfTheGpu) {
+  auto out = scratchDir("cli-host") / "result";
+  auto r = runAoreplay(fmt::format("run {} --out {} --no-images", capture().string(), out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto report = readJson(out / "report.json");
+  double gpu = 0;
+  for (const auto& frame : report["frames"]) {
+    for (const char* part : {"decode", "upload", "wait", "gpu", "readback", "write"}) {
+      ASSERT_TRUE(frame["host_ms"].contains(part)) << part;
+      EXPECT_GE(frame["host_ms"][part].get<double>(), 0.0) << part;
+    }
+    EXPECT_GT(frame["host_ms"]["decode"].get<double>(), 0.0);
+    EXPECT_GT(frame["host_ms"]["write"].get<double>(), 0.0) << "the sink analyses every frame";
+    gpu += frame["host_ms"]["gpu"].get<double>();
+  }
+  double wall = report["wall_ms"].get<double>();
+  EXPECT_NEAR(report["host_overhead"]["ms"].get<double>(), wall - gpu, 1e-6 * wall);
+  EXPECT_NEAR(report["host_overhead"]["fraction_of_wall"].get<double>(), (wall - gpu) / wall, 1e-9);
+  EXPECT_NE(r.output.find("host overhead"), std::string::npos) << r.output;
+
+  // Frame 1 is decoded while frame 0 runs on the GPU (whose first run also compiles the pipelines).
+  auto trace = readJson(out / "trace.json");
+  double decode1Start = -1, gpu0End = -1;
+  for (const auto& e : trace["traceEvents"]) {
+    if (e["ph"] != "X") continue;
+    int frame = e["args"]["frame"].get<int>();
+    if (e["name"] == "decode" && frame == 1) decode1Start = e["ts"].get<double>();
+    if (e["name"] == "gpu (submit + wait)" && frame == 0) gpu0End = e["ts"].get<double>() + e["dur"].get<double>();
+  }
+  ASSERT_GE(decode1Start, 0.0);
+  ASSERT_GE(gpu0End, 0.0);
+  EXPECT_LT(decode1Start, gpu0End);
 }
 
 TEST_F(Cli, OutputsAreBitIdenticalAcrossRunsAndLavapipeThreadCounts) {
