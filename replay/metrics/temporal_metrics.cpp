@@ -125,7 +125,7 @@ void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry
                                  const Reprojection* reprojection, const float* truth, Previous& next) {
   size_t pixels = geometry.distance.size();
   next.age.assign(pixels, -1);
-  next.sinceDisocclusion.assign(pixels, false);
+  next.sinceDisocclusion.assign(pixels, 0);
   next.error.assign(pixels, -1.0f);
   if (historyWeight_ <= 0.0f) return;  // no history: nothing to follow
   bool continued = frame.historyValid && reprojection;
@@ -135,14 +135,14 @@ void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry
     next.age[i] = 0;
     if (!continued) continue;  // reset: every pixel starts over, and not from a disocclusion
     if (reprojection->state[i] != PixelHistory::Reprojected) {
-      next.sinceDisocclusion[i] = true;
+      next.sinceDisocclusion[i] = 1;
       if (truth) {
         freshErrorSum_ += next.error[i];
         ++freshCount_;
       }
       continue;
     }
-    size_t from = reprojection->nearestPrevious(i, geometry.width, geometry.height);
+    size_t from = reprojection->nearest[i];
     if (previous_->age[from] < 0) continue;
     int age = std::min(previous_->age[from] + 1, kMaxTrackedAge);
     next.age[i] = age;

@@ -63,7 +63,7 @@ class TemporalAnalysis {
     std::vector<float> visibility;
     std::vector<float> reference;  // empty when the frame had none
     std::vector<int> age;          // frames since the pixel's history started, -1 sky
-    std::vector<bool> sinceDisocclusion;  // the history started at a disocclusion (not a reset)
+    std::vector<uint8_t> sinceDisocclusion;  // 1: the history started at a disocclusion (not a reset)
     std::vector<float> error;      // |output - truth| per pixel, < 0 when unknown
   };
   void trackAges(const AnalyzedFrame& frame, const FrameGeometry& geometry, const Reprojection* reprojection,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "metrics/depth.h"
+#include "metrics/parallel_rows.h"
 #include "temporal_denoise.h"
 
 namespace aor {
@@ -16,38 +17,41 @@ FrameGeometry frameGeometry(int width, int height, const float* depth, const glm
 
 size_t Reprojection::count(PixelHistory s) const { return size_t(std::count(state.begin(), state.end(), s)); }
 
-size_t Reprojection::nearestPrevious(size_t pixel, int width, int height) const {
-  glm::ivec2 p = glm::clamp(glm::ivec2(glm::round(position[pixel])), glm::ivec2(0), glm::ivec2(width - 1, height - 1));
-  return size_t(p.y) * size_t(width) + size_t(p.x);
-}
-
 Reprojection reproject(const FrameGeometry& current, const FrameGeometry& previous) {
   // The temporal pass's own terms, so this judges exactly the history the pass may reuse.
   auto t = shader::temporalReprojection(current.view, current.projection, previous.view, previous.projection,
                                         current.width, current.height);
   glm::vec2 size(float(current.width), float(current.height));
+  glm::ivec2 last(current.width - 1, current.height - 1);
 
   Reprojection r;
   size_t pixels = current.distance.size();
   r.state.assign(pixels, PixelHistory::Sky);
   r.position.assign(pixels, glm::vec2(0.0f));
-  for (int y = 0; y < current.height; ++y)
-    for (int x = 0; x < current.width; ++x) {
-      size_t i = size_t(y) * size_t(current.width) + size_t(x);
-      float dist = current.distance[i];
-      if (!(dist > 0.0f)) continue;
-      r.state[i] = PixelHistory::Disoccluded;
-      glm::vec3 viewPos = shader::viewPositionFromNdc(shader::pixelToNdc(glm::vec2(x, y), t.invSize), dist, t.ndcToViewMul, t.ndcToViewAdd);
-      glm::vec3 previousView = glm::vec3(t.viewToPreviousView * glm::vec4(viewPos, 1.0f));
-      float expected = -previousView.z;
-      if (!(expected > 0.0f)) continue;
-      glm::vec2 uv = shader::previousNdc(previousView, t.previousProjection) * 0.5f + 0.5f;
-      if (!(uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= 1.0f && uv.y <= 1.0f)) continue;
-      r.position[i] = uv * size - 0.5f;
-      size_t nearest = r.nearestPrevious(i, current.width, current.height);
-      if (shader::depthConsistent(expected, previous.distance[nearest], shader::kTemporalDepthTolerance))
-        r.state[i] = PixelHistory::Reprojected;
-    }
+  r.nearest.assign(pixels, 0);
+  forEachRowBand(current.height, [&](int firstRow, int endRow) {
+    for (int y = firstRow; y < endRow; ++y)
+      for (int x = 0; x < current.width; ++x) {
+        size_t i = size_t(y) * size_t(current.width) + size_t(x);
+        float dist = current.distance[i];
+        if (!(dist > 0.0f)) continue;
+        r.state[i] = PixelHistory::Disoccluded;
+        glm::vec3 viewPos = shader::viewPositionFromNdc(shader::pixelToNdc(glm::vec2(x, y), t.invSize), dist,
+                                                        t.ndcToViewMul, t.ndcToViewAdd);
+        glm::vec3 previousView = glm::vec3(t.viewToPreviousView * glm::vec4(viewPos, 1.0f));
+        float expected = -previousView.z;
+        if (!(expected > 0.0f)) continue;
+        glm::vec2 uv = shader::previousNdc(previousView, t.previousProjection) * 0.5f + 0.5f;
+        if (!(uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= 1.0f && uv.y <= 1.0f)) continue;
+        glm::vec2 position = uv * size - 0.5f;
+        glm::ivec2 p = glm::clamp(glm::ivec2(glm::round(position)), glm::ivec2(0), last);
+        size_t nearest = size_t(p.y) * size_t(current.width) + size_t(p.x);
+        r.position[i] = position;
+        r.nearest[i] = uint32_t(nearest);
+        if (shader::depthConsistent(expected, previous.distance[nearest], shader::kTemporalDepthTolerance))
+          r.state[i] = PixelHistory::Reprojected;
+      }
+  });
   return r;
 }
 

@@ -2,6 +2,7 @@
 // Where the surface a pixel shows was on screen in the previous frame: the temporal pass's
 // rejection layers 1 (off-screen) and 2 (depth mismatch) evaluated on the host with the same shared
 // shader functions, so the metrics judge exactly the history the pass was allowed to reuse.
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,9 +28,9 @@ enum class PixelHistory : unsigned char {
 struct Reprojection {
   std::vector<PixelHistory> state;    // per current pixel
   std::vector<glm::vec2> position;    // previous-frame pixel coordinates (pixel centres at integers)
+  std::vector<uint32_t> nearest;      // index of the nearest previous pixel (clamped to the image), the
+                                      // one the depth test read; meaningful for Reprojected pixels
   size_t count(PixelHistory s) const;
-  // Nearest previous pixel of a Reprojected pixel (clamped to the image).
-  size_t nearestPrevious(size_t pixel, int width, int height) const;
 };
 
 // Both frames must have the same size.
