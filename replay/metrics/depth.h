@@ -15,5 +15,7 @@ inline bool isReversedDepth(const glm::mat4& projection) { return projection[3][
 // Linear view distance of every pixel with the shader's own conversion (shaders/linearize_depth.h):
 // sky and invalid depth give a distance <= 0.
 std::vector<float> linearViewDistances(std::span<const float> depth, const glm::mat4& projection);
+// The same into `distances` (as many elements as `depth`), for callers that split the work.
+void linearViewDistances(std::span<const float> depth, const glm::mat4& projection, std::span<float> distances);
 
 }  // namespace aor

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/parallel_rows.h"
 #include "metrics/temporal_response.h"
 
 namespace aor {
@@ -13,40 +14,29 @@ bool sameSize(const FrameGeometry& a, const FrameGeometry& b) { return a.width =
 // Lai et al. 2018: previous output warped into this frame, squared difference over unmasked pixels.
 double warpingError(const float* visibility, const std::vector<float>& previous, const Reprojection& r, int width,
                     int height) {
-  double sum = 0;
-  size_t count = 0;
-  for (size_t i = 0; i < r.state.size(); ++i) {
-    if (r.state[i] != PixelHistory::Reprojected) continue;
-    double d = double(visibility[i]) - double(sampleBilinear(previous, width, height, r.position[i]));
-    sum += d * d;
-    ++count;
-  }
-  return count ? sum / double(count) : 0.0;
+  return rowOrderedMean(
+      width, height, [&](size_t i) { return r.state[i] == PixelHistory::Reprojected; },
+      [&](size_t i) {
+        double d = double(visibility[i]) - double(sampleBilinear(previous, width, height, r.position[i]));
+        return d * d;
+      });
 }
 
 double derivativeError(const float* output, const std::vector<float>& previousOutput, const float* reference,
                        const std::vector<float>& previousReference, const FrameGeometry& g) {
-  double sum = 0;
-  size_t count = 0;
-  for (size_t i = 0; i < g.distance.size(); ++i) {
-    if (g.isSky(i)) continue;
-    double outputChange = double(output[i]) - double(previousOutput[i]);
-    double referenceChange = double(reference[i]) - double(previousReference[i]);
-    sum += std::abs(outputChange - referenceChange);
-    ++count;
-  }
-  return count ? sum / double(count) : 0.0;
+  return rowOrderedMean(
+      g.width, g.height, [&](size_t i) { return !g.isSky(i); },
+      [&](size_t i) {
+        double outputChange = double(output[i]) - double(previousOutput[i]);
+        double referenceChange = double(reference[i]) - double(previousReference[i]);
+        return std::abs(outputChange - referenceChange);
+      });
 }
 
 double meanAbsError(const float* output, const float* truth, const FrameGeometry& g) {
-  double sum = 0;
-  size_t count = 0;
-  for (size_t i = 0; i < g.distance.size(); ++i) {
-    if (g.isSky(i)) continue;
-    sum += std::abs(double(output[i]) - double(truth[i]));
-    ++count;
-  }
-  return count ? sum / double(count) : 0.0;
+  return rowOrderedMean(
+      g.width, g.height, [&](size_t i) { return !g.isSky(i); },
+      [&](size_t i) { return std::abs(double(output[i]) - double(truth[i])); });
 }
 
 nlohmann::json responseJson(const ResponseSummary& r) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/parallel_rows.h"
 #include "metrics/percentile.h"
 
 namespace aor {
@@ -22,12 +23,15 @@ void StaticWindow::start(int frame, const FrameGeometry& geometry) {
 
 void StaticWindow::add(const float* visibility) {
   ++count_;
-  for (size_t i = 0; i < mean_.size(); ++i) {
-    double v = visibility[i];
-    double delta = v - mean_[i];
-    mean_[i] += delta / count_;
-    m2_[i] += delta * (v - mean_[i]);
-  }
+  size_t width = size_t(geometry_.width);
+  forEachRowBand(geometry_.height, [&](int firstRow, int endRow) {
+    for (size_t i = size_t(firstRow) * width; i < size_t(endRow) * width; ++i) {
+      double v = visibility[i];
+      double delta = v - mean_[i];
+      mean_[i] += delta / count_;
+      m2_[i] += delta * (v - mean_[i]);
+    }
+  });
 }
 
 std::vector<float> StaticWindow::pixelDeviations() const {

@@ -11,7 +11,11 @@ namespace aor {
 
 FrameGeometry frameGeometry(int width, int height, const float* depth, const glm::mat4& view, const glm::mat4& projection) {
   FrameGeometry g{width, height, view, projection, {}};
-  g.distance = linearViewDistances({depth, size_t(width) * size_t(height)}, projection);
+  g.distance.resize(size_t(width) * size_t(height));
+  forEachRowBand(height, [&](int firstRow, int endRow) {
+    size_t first = size_t(firstRow) * size_t(width), count = size_t(endRow - firstRow) * size_t(width);
+    linearViewDistances({depth + first, count}, projection, {g.distance.data() + first, count});
+  });
   return g;
 }
 
