@@ -1,6 +1,7 @@
 #include "metrics/temporal_metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "metrics/parallel_rows.h"
@@ -110,7 +111,8 @@ void TemporalAnalysis::addFrame(const AnalyzedFrame& frame) {
 }
 
 // Frames since each pixel's history started, followed through the reprojection. Pixels whose
-// history started at a disocclusion feed the disocclusion curve.
+// history started at a disocclusion feed the disocclusion curve. Rows run in bands on all cores;
+// each row's sums are added to the curve's in row order (see rowOrderedMean).
 void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry& geometry,
                                  const Reprojection* reprojection, const float* truth, Previous& next) {
   size_t pixels = geometry.distance.size();
@@ -119,27 +121,46 @@ void TemporalAnalysis::trackAges(const AnalyzedFrame& frame, const FrameGeometry
   next.error.assign(pixels, -1.0f);
   if (historyWeight_ <= 0.0f) return;  // no history: nothing to follow
   bool continued = frame.historyValid && reprojection;
-  for (size_t i = 0; i < pixels; ++i) {
-    if (geometry.isSky(i)) continue;
-    if (truth) next.error[i] = std::abs(frame.visibility[i] - truth[i]);
-    next.age[i] = 0;
-    if (!continued) continue;  // reset: every pixel starts over, and not from a disocclusion
-    if (reprojection->state[i] != PixelHistory::Reprojected) {
-      next.sinceDisocclusion[i] = 1;
-      if (truth) {
-        freshErrorSum_ += next.error[i];
-        ++freshCount_;
+  struct RowSums {
+    double fresh = 0;
+    size_t freshCount = 0;
+    std::array<double, kMaxTrackedAge + 1> step{};
+    std::array<size_t, kMaxTrackedAge + 1> stepCount{};
+  };
+  std::vector<RowSums> rows(size_t(geometry.height));
+  size_t width = size_t(geometry.width);
+  forEachRowBand(geometry.height, [&](int firstRow, int endRow) {
+    for (size_t y = size_t(firstRow); y < size_t(endRow); ++y)
+      for (size_t i = y * width; i < (y + 1) * width; ++i) {
+        if (geometry.isSky(i)) continue;
+        if (truth) next.error[i] = std::abs(frame.visibility[i] - truth[i]);
+        next.age[i] = 0;
+        if (!continued) continue;  // reset: every pixel starts over, and not from a disocclusion
+        if (reprojection->state[i] != PixelHistory::Reprojected) {
+          next.sinceDisocclusion[i] = 1;
+          if (truth) {
+            rows[y].fresh += next.error[i];
+            ++rows[y].freshCount;
+          }
+          continue;
+        }
+        size_t from = reprojection->nearest[i];
+        if (previous_->age[from] < 0) continue;
+        int age = std::min(previous_->age[from] + 1, kMaxTrackedAge);
+        next.age[i] = age;
+        next.sinceDisocclusion[i] = previous_->sinceDisocclusion[from];
+        if (next.sinceDisocclusion[i] && truth && previous_->error[from] >= 0.0f) {
+          rows[y].step[size_t(age)] += double(next.error[i]) - double(previous_->error[from]);
+          ++rows[y].stepCount[size_t(age)];
+        }
       }
-      continue;
-    }
-    size_t from = reprojection->nearest[i];
-    if (previous_->age[from] < 0) continue;
-    int age = std::min(previous_->age[from] + 1, kMaxTrackedAge);
-    next.age[i] = age;
-    next.sinceDisocclusion[i] = previous_->sinceDisocclusion[from];
-    if (next.sinceDisocclusion[i] && truth && previous_->error[from] >= 0.0f) {
-      stepSum_[size_t(age)] += double(next.error[i]) - double(previous_->error[from]);
-      ++stepCount_[size_t(age)];
+  });
+  for (const auto& row : rows) {
+    freshErrorSum_ += row.fresh;
+    freshCount_ += row.freshCount;
+    for (size_t a = 0; a < row.step.size(); ++a) {
+      stepSum_[a] += row.step[a];
+      stepCount_[a] += row.stepCount[a];
     }
   }
 }

@@ -6,10 +6,12 @@
 #include <cstring>
 #include <future>
 #include <memory>
+#include <numeric>
 
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
 
+#include "metrics/parallel_rows.h"
 #include "pipeline/ao_graph.h"
 #include "pipeline/graph_executor.h"
 #include "pipeline/graph_resources.h"
@@ -67,21 +69,25 @@ int64_t countInvalidDepth(const GBuffer& g) {
   return invalid;
 }
 
-// Writes RGBA16F (w = 0) into `out`, which holds 4 halves per pixel.
+// Writes RGBA16F (w = 0) into `out`, which holds 4 halves per pixel; returns the pixels with a
+// non-finite component. In row bands on all cores: the first frame's is on the critical path.
 int64_t packNormals(const GBuffer& g, uint16_t* out) {
-  size_t pixels = g.normals.size() / 3;
-  int64_t invalid = 0;
-  for (size_t i = 0; i < pixels; ++i) {
-    bool finite = true;
-    for (int c = 0; c < 3; ++c) {
-      float v = g.normals[3 * i + size_t(c)];
-      finite &= std::isfinite(v);
-      out[4 * i + size_t(c)] = glm::packHalf1x16(v);
-    }
-    out[4 * i + 3] = 0;
-    invalid += !finite;
-  }
-  return invalid;
+  std::vector<int64_t> invalidRows(size_t(g.height), 0);
+  size_t width = size_t(g.width);
+  forEachRowBand(g.height, [&](int firstRow, int endRow) {
+    for (size_t y = size_t(firstRow); y < size_t(endRow); ++y)
+      for (size_t i = y * width; i < (y + 1) * width; ++i) {
+        bool finite = true;
+        for (int c = 0; c < 3; ++c) {
+          float v = g.normals[3 * i + size_t(c)];
+          finite &= std::isfinite(v);
+          out[4 * i + size_t(c)] = glm::packHalf1x16(v);
+        }
+        out[4 * i + 3] = 0;
+        invalidRows[y] += !finite;
+      }
+  });
+  return std::accumulate(invalidRows.begin(), invalidRows.end(), int64_t(0));
 }
 
 // Every half-float bit pattern converted once (by the same glm function, so results are identical):
@@ -107,14 +113,16 @@ FrameOutput decodeReadback(const GpuBuffer& readback, int index, int width, int 
   const float* toFloat = halfToFloat().data();
   out.visibility.resize(pixels);
   if (bent) out.bent.resize(pixels * 3);
-  for (size_t i = 0; i < pixels; ++i) {
-    if (!bent) {
-      out.visibility[i] = toFloat[halves[i]];
-      continue;
+  forEachRowBand(height, [&](int firstRow, int endRow) {  // the last frame's is on the critical path
+    for (size_t i = size_t(firstRow) * size_t(width); i < size_t(endRow) * size_t(width); ++i) {
+      if (!bent) {
+        out.visibility[i] = toFloat[halves[i]];
+        continue;
+      }
+      for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = toFloat[halves[4 * i + c]];
+      out.visibility[i] = toFloat[halves[4 * i + 3]];
     }
-    for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = toFloat[halves[4 * i + c]];
-    out.visibility[i] = toFloat[halves[4 * i + 3]];
-  }
+  });
   return out;
 }
 
