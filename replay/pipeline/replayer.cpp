@@ -113,16 +113,14 @@ FrameOutput decodeReadback(const GpuBuffer& readback, int index, int width, int 
   const float* toFloat = halfToFloat().data();
   out.visibility.resize(pixels);
   if (bent) out.bent.resize(pixels * 3);
-  forEachRowBand(height, [&](int firstRow, int endRow) {  // the last frame's is on the critical path
-    for (size_t i = size_t(firstRow) * size_t(width); i < size_t(endRow) * size_t(width); ++i) {
-      if (!bent) {
-        out.visibility[i] = toFloat[halves[i]];
-        continue;
-      }
-      for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = toFloat[halves[4 * i + c]];
-      out.visibility[i] = toFloat[halves[4 * i + 3]];
+  for (size_t i = 0; i < pixels; ++i) {
+    if (!bent) {
+      out.visibility[i] = toFloat[halves[i]];
+      continue;
     }
-  });
+    for (size_t c = 0; c < 3; ++c) out.bent[3 * i + c] = toFloat[halves[4 * i + c]];
+    out.visibility[i] = toFloat[halves[4 * i + 3]];
+  }
   return out;
 }
 
