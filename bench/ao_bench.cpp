@@ -11,6 +11,8 @@
 // Own flags (before Google Benchmark's): --sizes=320x180,640x360,1920x1080  --presets=low,medium,high,ultra
 // --reps=N (default 10)  --warmup=N (default 2)  --warmup-ms=MS (default 300)  --device=SEL  --capture=DIR  --cache=DIR
 // --scaling-size=WxH: where time against slices x steps is measured (default: the second size).
+// Sizes are read by aor::parseSize (options/size.h), as `aoreplay capture --size` is; a bad one
+// exits 2 before any device is opened.
 // --extra-slices=N adds N GTAO slices to every configuration without renaming it: a real slowdown
 // for checking that `aoreplay compare` detects one.
 //
@@ -30,6 +32,8 @@
 
 #include "bench_capture.h"
 #include "bench_scaling.h"
+#include "capture/input_error.h"
+#include "options/size.h"
 #include "pipeline/replayer.h"
 #include "report/compare_stats.h"
 #include "vk/context.h"
@@ -203,12 +207,6 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
-std::pair<int, int> parseSize(const std::string& s) {
-  int w = 0, h = 0;
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw std::invalid_argument("bad size " + s);
-  return {w, h};
-}
-
 // Takes the flags this program owns out of argv, leaving Google Benchmark's.
 Options parseOwnFlags(int& argc, char** argv) {
   Options o;
@@ -222,8 +220,9 @@ Options parseOwnFlags(int& argc, char** argv) {
     };
     if (auto v = value("--sizes")) {
       o.sizes.clear();
-      for (const auto& s : splitList(*v)) o.sizes.push_back(parseSize(s));
-    } else if (auto ss = value("--scaling-size")) o.scalingSize = parseSize(*ss);
+      for (const auto& s : splitList(*v)) o.sizes.push_back(parseSize(s, "--sizes"));
+      if (o.sizes.empty()) throw InputError("", std::nullopt, "--sizes", "names no size (expected WxH,WxH,...)");
+    } else if (auto ss = value("--scaling-size")) o.scalingSize = parseSize(*ss, "--scaling-size");
     else if (auto p = value("--presets")) o.presets = splitList(*p);
     else if (auto r = value("--reps")) o.reps = std::stoi(*r);
     else if (auto wu = value("--warmup")) o.warmup = std::stoi(*wu);
@@ -255,6 +254,9 @@ int main(int argc, char** argv) {
     benchmark::RunSpecifiedBenchmarks();
     printScaling(stderr, scalingInput());
     benchmark::Shutdown();
+  } catch (const aor::InputError& e) {  // bad usage, like an unrecognised flag: exit 2
+    fmt::print(stderr, "ao_bench: error: {}\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "ao_bench: {}\n", e.what());
     return 1;

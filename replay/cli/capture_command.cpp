@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "generator/generator.h"
+#include "options/size.h"
 
 namespace aor::cli {
 namespace {
@@ -22,17 +22,9 @@ struct CaptureArgs {
   bool noNormals = false;
 };
 
-std::pair<int, int> parseSize(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0)
-    throw InputError("", std::nullopt, "--size", fmt::format("'{}' is not WxH with positive sizes", text));
-  return {w, h};
-}
-
 int captureCommand(CaptureArgs& args) {
   auto& o = args.options;
-  std::tie(o.width, o.height) = parseSize(args.size);
+  std::tie(o.width, o.height) = parseSize(args.size, "--size");
   if (args.radius > 0.0f) o.radius = args.radius;
   o.writeNormals = !args.noNormals;
   bool tty = isatty(STDERR_FILENO);

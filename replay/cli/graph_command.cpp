@@ -2,7 +2,6 @@
 // culled with reasons, resources, lifetimes, aliasing, barriers) and writes it as Graphviz DOT.
 // Needs no GPU: the graph is built and compiled, never executed.
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include <fmt/format.h>
@@ -11,6 +10,7 @@
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
 #include "pipeline/ao_graph.h"
+#include "report/output_directory.h"
 #include "vk/context.h"
 
 namespace aor::cli {
@@ -50,8 +50,7 @@ int graphCommand(const GraphArgs& args) {
   for (const auto& [pass, why] : frameGraph.notes) fmt::print("why {} is not needed: {}\n", pass, why);
 
   fs::path dotPath = args.dot.empty() ? fs::path("out") / capture.name / "graph.dot" : fs::path(args.dot);
-  if (dotPath.has_parent_path()) fs::create_directories(dotPath.parent_path());
-  std::ofstream(dotPath) << graph::toDot(frameGraph.graph, compiled);
+  writeFileAtomically(dotPath, graph::toDot(frameGraph.graph, compiled));  // InputError (exit 2) if it cannot
   fmt::print("dot: {} (render with: dot -Tsvg {} -o graph.svg)\n", dotPath.string(), dotPath.string());
   return kExitOk;
 }

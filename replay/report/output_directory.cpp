@@ -2,7 +2,13 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
 #include <fmt/format.h>
+
+#include "capture/input_error.h"
 
 namespace aor {
 
@@ -25,6 +31,30 @@ void OutputDirectory::commit() {
   fs::remove_all(final_);
   fs::rename(staging_, final_);
   committed_ = true;
+}
+
+void writeFileAtomically(const fs::path& path, const std::string& text) {
+  auto fail = [&](const std::string& problem) { return InputError(path.string(), std::nullopt, "", problem); };
+  std::error_code ec;
+  if (!path.has_filename() || fs::is_directory(path, ec)) throw fail("names a folder, not a file");
+  if (path.has_parent_path()) {
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) throw fail(fmt::format("cannot create the folder {}: {}", path.parent_path().string(), ec.message()));
+  }
+  fs::path tmp = path.parent_path() / fmt::format(".{}.tmp-{}", path.filename().string(), getpid());
+  try {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw fail(fmt::format("cannot create {}: {}", tmp.string(), std::strerror(errno)));
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.close();
+    if (!out) throw fail(fmt::format("cannot write {}: {}", tmp.string(), std::strerror(errno)));
+    fs::rename(tmp, path, ec);
+    if (ec) throw fail("cannot move the new file into place: " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
 }
 
 }  // namespace aor

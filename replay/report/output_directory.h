@@ -2,6 +2,7 @@
 // Outputs are written under a temporary sibling folder and renamed into place only when the run
 // succeeded, so a failed run never leaves anything that looks like a valid result.
 #include <filesystem>
+#include <string>
 
 namespace aor {
 
@@ -22,5 +23,11 @@ class OutputDirectory {
   std::filesystem::path staging_;
   bool committed_ = false;
 };
+
+// The same for one file: missing parent folders are created, `text` goes to a temporary file
+// beside `path` (".NAME.tmp-PID") and that is renamed over `path` once complete, so `path` is
+// either untouched or the whole new file. Throws InputError naming `path` when it cannot be
+// written (it names a folder, a parent is a regular file, ...); the temporary file never stays.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace aor

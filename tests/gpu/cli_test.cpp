@@ -2,6 +2,8 @@
 // thread counts, validation, exit codes and no partial results on failure.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -171,6 +173,44 @@ TEST_F(Cli, GraphCommandExplainsCulledPassesAndWritesDot) {
   if (std::system("command -v dot > /dev/null") == 0) {
     EXPECT_EQ(std::system(fmt::format("dot -Tsvg {} -o {}.svg", dot.string(), dot.string()).c_str()), 0);
   }
+}
+
+// Everything under `dir` (relative paths, folders included), to see what a command left behind.
+std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) names.insert(fs::relative(entry.path(), dir).string());
+  return names;
+}
+
+std::string contents(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_F(Cli, GraphCommandRefusesAnUnwritableDotPathAndLeavesNothingBehind) {
+  auto dir = scratchDir("cli-graph-unwritable");
+  fs::create_directory(dir / "folder");
+  std::ofstream(dir / "file") << "a regular file\n";
+  auto before = listing(dir);
+  for (const fs::path& dot : {dir / "folder", dir / "file" / "graph.dot", dir / "file" / "sub" / "graph.dot",
+                              dir / "new" / ""}) {
+    auto r = runAoreplay(fmt::format("graph {} --frames 0:1 --dot {}", capture().string(), dot.string()));
+    EXPECT_EQ(r.exitCode, 2) << dot << "\n" << r.output;
+    EXPECT_NE(r.output.find("aoreplay: error: " + dot.string() + ": "), std::string::npos) << dot << "\n" << r.output;
+    EXPECT_EQ(r.output.find("\ndot: "), std::string::npos) << dot << " claims to be written\n" << r.output;
+    EXPECT_EQ(listing(dir), before) << dot << " left something behind";
+  }
+  EXPECT_EQ(contents(dir / "file"), "a regular file\n");
+}
+
+TEST_F(Cli, GraphCommandReplacesAnExistingDotFileWhole) {
+  auto dir = scratchDir("cli-graph-replace");
+  auto dot = dir / "graph.dot";
+  std::ofstream(dot) << "old contents\n";
+  auto r = runAoreplay(fmt::format("graph {} --frames 0:1 --dot {}", capture().string(), dot.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(contents(dot).rfind("digraph render_graph {", 0), 0u) << contents(dot);
+  EXPECT_EQ(listing(dir), std::set<std::string>{"graph.dot"}) << "no temporary file stays beside it";
 }
 
 }  // namespace
