@@ -21,7 +21,10 @@ namespace aor {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double msBetween(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
+double msSince(Clock::time_point t) { return msBetween(t, Clock::now()); }
 
 // Host-visible staging for one frame in flight: G-buffer uploads and the read-back of the result.
 struct StagingSlot {
@@ -232,7 +235,7 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
   auto decode = [&capture, &staging, temporalWanted, replayStart](int index) {
     auto t = Clock::now();
     DecodedFrame d;
-    d.startMs = std::chrono::duration<double, std::milli>(t - replayStart).count();
+    d.startMs = msBetween(replayStart, t);
     d.gbuffer = loadGBuffer(capture, index);
     d.invalidDepthPixels = countInvalidDepth(d.gbuffer);
     if (temporalWanted) d.medianDistance = medianViewDistance(d.gbuffer.depth, capture.frames[size_t(index)].projection);
@@ -311,7 +314,7 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
                                                     reason = record.resetReason] {
         auto start = Clock::now();
         SinkTimes times;
-        times.startMs = std::chrono::duration<double, std::milli>(start - replayStart).count();
+        times.startMs = msBetween(replayStart, start);
         FrameOutput output = decodeReadback(slot.readback, index, capture.width, capture.height, bent);
         times.readbackMs = msSince(start);
         auto written = Clock::now();
