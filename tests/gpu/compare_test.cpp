@@ -151,7 +151,7 @@ TEST(Compare, NamesInOnlyOneRunAreListedNotCompared) {
   EXPECT_EQ(json["significant_slowdown"], false);
 }
 
-// One scratch folder for this file, emptied once (scratchDir empties on every call); names differ per test.
+// One scratch folder per process, emptied once (scratchDir empties on every call); file names differ per test.
 const std::filesystem::path& scratch() {
   static const auto dir = test::scratchDir("compare");
   return dir;

@@ -1,5 +1,6 @@
 #include "gpu_test_support.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -63,8 +64,13 @@ VulkanContext& validatedContext() {
   return h.vk;
 }
 
+// CTest runs every test as its own process, two or more at once: a folder per test keeps one test
+// from emptying a folder another is still reading.
 fs::path scratchDir(const std::string& name) {
-  fs::path dir = fs::path(AOR_BINARY_DIR) / "test-scratch" / name;
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string owner = test ? fmt::format("{}.{}", test->test_suite_name(), test->name()) : "no-test";
+  std::replace(owner.begin(), owner.end(), '/', '_');
+  fs::path dir = fs::path(AOR_BINARY_DIR) / "test-scratch" / owner / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -16,7 +16,7 @@ namespace aor::test {
 // Lavapipe context with validation + synchronization validation, created on first use.
 VulkanContext& validatedContext();
 
-std::filesystem::path scratchDir(const std::string& name);  // fresh folder under the build tree
+std::filesystem::path scratchDir(const std::string& name);  // fresh folder under the build tree, private to the running test
 
 // Generated with the project's generator once per test program (cached by name).
 std::filesystem::path generatedCapture(const std::string& scene, const std::string& path, int width, int height,
