@@ -39,10 +39,11 @@ struct FrameRecord {
   std::vector<PassTiming> passes;    // live passes in execution order
   // Host-side wall time of this frame, milliseconds. Decode and upload (writing the staging memory)
   // run ahead on the decode worker; readback (converting the mapped read-back to floats) and write
-  // (the sink: images, analysis) run behind on the sink worker. Only wait and gpu are on the replay
-  // thread's critical path.
-  double decodeMs = 0, uploadMs = 0, waitMs = 0, gpuWallMs = 0, readbackMs = 0, writeMs = 0;
-  double hostStartMs = 0;            // since the replay started: when the replay thread took the frame
+  // (the sink: images, analysis) run behind on the sink worker. Only wait, record (building,
+  // compiling and recording the graph) and gpu (submission to fence) are on the replay thread's
+  // critical path; record and gpu add up all runs of the frame (warm-up included).
+  double decodeMs = 0, uploadMs = 0, waitMs = 0, recordMs = 0, gpuWallMs = 0, readbackMs = 0, writeMs = 0;
+  double hostStartMs = 0;            // since the set-up started: when the replay thread took the frame
   double workerStartMs = 0;          // when the decode worker started it
   double sinkStartMs = 0;            // when the sink worker started it
   int64_t invalidDepthPixels = 0;    // NaN, Inf or outside [0,1]
@@ -73,11 +74,12 @@ struct ReplayResult {
   uint64_t peakGpuBytes = 0;                // resources of the compiled graph, aliasing included
   uint64_t unaliasedGpuBytes = 0;
   nlohmann::json resources;                 // graphResourcesJson() of the last frame's graph
-  double wallMs = 0;
+  double setupMs = 0;  // staging memory, pipelines and the first frame's images; the first decode overlaps it
+  double wallMs = 0;   // from the end of the set-up to the end of the last frame's sink
 };
 
-// Time the replay thread spent on anything but the GPU work (submit and wait): waiting for a
-// decode, recording, and the last frame's sink. What the host adds to a replay's wall time.
+// Wall time not spent in GPU work (submission to fence): waiting for a decode, recording, and the
+// last frame's sink. What the host adds to a replay's wall time.
 struct HostOverhead {
   double ms = 0;
   double fractionOfWall = 0;

@@ -83,13 +83,15 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
     nlohmann::json framePasses = nlohmann::json::object();
     for (const auto& p : f.passes) framePasses[p.name] = summarize(p.durationsMs).median;
     frame["gpu_ms_median"] = framePasses;
-    frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs}, {"wait", f.waitMs},
-                        {"gpu", f.gpuWallMs}, {"readback", f.readbackMs}, {"write", f.writeMs}};
+    frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs},     {"wait", f.waitMs},
+                        {"record", f.recordMs}, {"gpu", f.gpuWallMs},       {"readback", f.readbackMs},
+                        {"write", f.writeMs}};
     frame["invalid_depth_pixels"] = f.invalidDepthPixels;
     frame["invalid_normal_pixels"] = f.invalidNormalPixels;
     frames.push_back(frame);
   }
   report["frames"] = frames;
+  report["setup_ms"] = result.setupMs;
   report["wall_ms"] = result.wallMs;
   report["replay_fps"] = result.wallMs > 0 ? 1000.0 * double(result.frames.size()) / result.wallMs : 0.0;
   HostOverhead overhead = hostOverhead(result);
@@ -111,6 +113,7 @@ nlohmann::json buildTrace(const ReplayResult& result) {
     events.push_back({{"name", name}, {"ph", "X"}, {"pid", kPid}, {"tid", track}, {"ts", startMs * 1000.0},
                       {"dur", durMs * 1000.0}, {"args", std::move(args)}});
   };
+  slice("set-up (staging, pipelines, first frame's images)", kHostTrack, 0.0, result.setupMs, nlohmann::json::object());
   for (const auto& f : result.frames) {
     nlohmann::json args{{"frame", f.index}};
     slice("decode", kWorkerTrack, f.workerStartMs, f.decodeMs, args);
@@ -118,6 +121,8 @@ nlohmann::json buildTrace(const ReplayResult& result) {
     double t = f.hostStartMs;
     if (f.waitMs > 0) slice("wait for decode", kHostTrack, t, f.waitMs, args);
     t += f.waitMs;
+    slice("record", kHostTrack, t, f.recordMs, args);  // with warm-up or repeats: all runs' recording, then all GPU waits
+    t += f.recordMs;
     double gpuStart = t;
     slice("gpu (submit + wait)", kHostTrack, t, f.gpuWallMs, args);
     if (f.readbackMs + f.writeMs > 0) {

@@ -77,7 +77,7 @@ TEST_F(Cli, ReportBreaksDownHostTimeAndDecodesAheadOfTheGpu) {
   auto report = readJson(out / "report.json");
   double gpu = 0;
   for (const auto& frame : report["frames"]) {
-    for (const char* part : {"decode", "upload", "wait", "gpu", "readback", "write"}) {
+    for (const char* part : {"decode", "upload", "wait", "record", "gpu", "readback", "write"}) {
       ASSERT_TRUE(frame["host_ms"].contains(part)) << part;
       EXPECT_GE(frame["host_ms"][part].get<double>(), 0.0) << part;
     }
@@ -90,17 +90,23 @@ TEST_F(Cli, ReportBreaksDownHostTimeAndDecodesAheadOfTheGpu) {
   EXPECT_NEAR(report["host_overhead"]["fraction_of_wall"].get<double>(), (wall - gpu) / wall, 1e-9);
   EXPECT_NE(r.output.find("host overhead"), std::string::npos) << r.output;
 
-  // Frame 1 is decoded while frame 0 runs on the GPU (whose first run also compiles the pipelines).
+  // Frame 0 is decoded during the set-up (which compiles the pipelines), frame 1 while frame 0 runs
+  // on the GPU.
+  double setupMs = report["setup_ms"].get<double>();
+  EXPECT_GT(setupMs, 0.0);
   auto trace = readJson(out / "trace.json");
-  double decode1Start = -1, gpu0End = -1;
+  double decode0Start = -1, decode1Start = -1, gpu0End = -1;
   for (const auto& e : trace["traceEvents"]) {
-    if (e["ph"] != "X") continue;
+    if (e["ph"] != "X" || !e["args"].contains("frame")) continue;
     int frame = e["args"]["frame"].get<int>();
+    if (e["name"] == "decode" && frame == 0) decode0Start = e["ts"].get<double>();
     if (e["name"] == "decode" && frame == 1) decode1Start = e["ts"].get<double>();
     if (e["name"] == "gpu (submit + wait)" && frame == 0) gpu0End = e["ts"].get<double>() + e["dur"].get<double>();
   }
+  ASSERT_GE(decode0Start, 0.0);
   ASSERT_GE(decode1Start, 0.0);
   ASSERT_GE(gpu0End, 0.0);
+  EXPECT_LT(decode0Start, setupMs * 1000.0);  // trace times are microseconds
   EXPECT_LT(decode1Start, gpu0End);
 }
 
