@@ -34,6 +34,7 @@
 #include "bench_scaling.h"
 #include "capture/input_error.h"
 #include "options/size.h"
+#include "passes/pass_names.h"
 #include "pipeline/replayer.h"
 #include "report/compare_stats.h"
 #include "vk/context.h"
@@ -63,9 +64,6 @@ struct Config {
   auto key() const { return std::tuple(width, height, settings.slices, settings.steps, settings.bent); }
 };
 
-// The passes the pipeline total adds up: every compute pass. Upload and readback are copies of the
-// harness, not the algorithm, and are reported on their own.
-bool isComputePass(const std::string& name) { return name != "upload" && name != "readback"; }
 
 struct Measured {
   std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution
@@ -107,7 +105,7 @@ class Harness {
     m.pipelineMs.assign(size_t(options_.reps), 0.0);
     for (const auto& pass : frame.passes) {
       m.passMs[pass.name] = pass.durationsMs;
-      if (isComputePass(pass.name))
+      if (!isHostCopyPass(pass.name))
         for (size_t i = 0; i < pass.durationsMs.size(); ++i) m.pipelineMs[i] += pass.durationsMs[i];
     }
     return measured_.emplace(config.key(), std::move(m)).first->second;

@@ -8,7 +8,8 @@
 # adds `--set slices=N+1`, where N is the slice count A's report.json says A ran with (3 with the
 # default preset, high), so S is one slice more than A whatever the preset or settings.
 # COMPARE_ARGS (words split on spaces) go to `aoreplay compare`, e.g.
-#   COMPARE_ARGS='--ignore ^(upload|readback)$'   to judge the compute passes only.
+#   COMPARE_ARGS='--judge-host-copies'   to let the upload and read-back copies fail it too.
+# "every pass 'same'" counts the names compare judges.
 set -euo pipefail
 build=${1:?build dir}
 out=${2:?output dir}
@@ -48,7 +49,7 @@ for i in $(seq 1 "$pairs"); do
   set -e
   [ "$same_rc" -eq 1 ] && false_alarms=$((false_alarms + 1))
   [ "$slow_rc" -eq 1 ] && detected=$((detected + 1))
-  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); sys.exit(any(p['verdict']!='same' for p in d['passes']))" \
+  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); sys.exit(any(p['verdict']!='same' for p in d['passes'] if p.get('judged', True)))" \
     "$out/same$i.json" && all_same=$((all_same + 1))
   total_same=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(next(p['verdict'] for p in d['passes'] if p['name']=='total'))" "$out/same$i.json")
   total_slow=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); p=next(p for p in d['passes'] if p['name']=='total'); print(p['verdict'], '%+.1f%%' % (100*p['change']))" "$out/slow$i.json")

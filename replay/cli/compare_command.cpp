@@ -29,7 +29,7 @@ TimingSamples withoutIgnored(TimingSamples samples, const std::vector<std::strin
     } catch (const std::regex_error& e) {
       throw InputError("", std::nullopt, "--ignore", fmt::format("\"{}\" is not a regular expression: {}", pattern, e.what()));
     }
-    std::erase_if(samples, [&](const auto& entry) { return std::regex_search(entry.first, re); });
+    std::erase_if(samples, [&](const auto& series) { return std::regex_search(series.name, re); });
   }
   return samples;
 }
@@ -60,6 +60,8 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_option("--spread-multiple", args->options.spreadMultiple,
                   "the change must also exceed this many baseline spreads (robust, relative)")
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_flag("--judge-host-copies", args->options.judgeHostCopies,
+                "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");
   handlers()["compare"] = [args] { return compareCommand(*args); };
 }
 

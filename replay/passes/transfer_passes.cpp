@@ -1,6 +1,7 @@
 // Upload of G-buffers and read-back of the result: transfer passes in the graph, so their
 // barriers are derived like every other pass's and their time shows up in the report.
 #include "pipeline/pass_context.h"
+#include "passes/pass_names.h"
 #include "passes/passes.h"
 
 namespace aor {
@@ -18,7 +19,7 @@ VkBufferImageCopy wholeImage(const GpuImage& image) {
 void addUploadPass(graph::RenderGraph& graph, const GpuBuffer& depth, graph::ResourceId depthImage,
                    const GpuBuffer* normals, graph::ResourceId normalsImage) {
   graph.addPass(
-      "upload",
+      std::string(kUploadPass),
       [&](graph::PassBuilder& b) {
         b.write(depthImage, graph::Access::TransferWrite);
         if (normalsImage != graph::kNoResource) b.write(normalsImage, graph::Access::TransferWrite);
@@ -36,7 +37,7 @@ void addUploadPass(graph::RenderGraph& graph, const GpuBuffer& depth, graph::Res
 
 void addReadbackPass(graph::RenderGraph& graph, graph::ResourceId image, const GpuBuffer& target) {
   graph.addPass(
-      "readback",
+      std::string(kReadbackPass),
       [&](graph::PassBuilder& b) {
         b.read(image, graph::Access::TransferRead);
         b.sideEffect();

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
+#include "passes/pass_names.h"
 #include "report/compare_stats.h"
 
 namespace aor {
@@ -30,16 +31,20 @@ double positiveNumber(const nlohmann::json& value, const fs::path& path, const s
   return value.get<double>();
 }
 
-// Elementwise sum of the passes' samples: the frame's whole GPU time per run. Only meaningful when
-// every pass ran the same number of times (same frames, same repetitions).
+// Elementwise sum of the compute passes' samples: the frame's GPU time per run, as ao_bench's
+// "pipeline" adds it up. Only meaningful when every pass ran the same number of times (same
+// frames, same repetitions).
 void addTotal(TimingSamples& samples) {
-  if (samples.size() < 2) return;
-  size_t count = samples.front().second.size();
-  for (const auto& [name, values] : samples)
-    if (values.size() != count) return;
+  std::vector<const TimingSeries*> compute;
+  for (const auto& series : samples)
+    if (!series.hostCopy) compute.push_back(&series);
+  if (compute.size() < 2) return;
+  size_t count = compute.front()->samples.size();
+  for (const auto* series : compute)
+    if (series->samples.size() != count) return;
   std::vector<double> total(count, 0.0);
-  for (const auto& [name, values] : samples)
-    for (size_t i = 0; i < count; ++i) total[i] += values[i];
+  for (const auto* series : compute)
+    for (size_t i = 0; i < count; ++i) total[i] += series->samples[i];
   samples.push_back({"total", std::move(total)});
 }
 
@@ -57,7 +62,8 @@ TimingSamples fromReport(const nlohmann::json& report, const fs::path& path) {
     std::vector<double> values;
     const auto& raw = pass["gpu_ms"]["samples"];
     for (size_t k = 0; k < raw.size(); ++k) values.push_back(positiveNumber(raw[k], path, fmt::format("{}[{}]", field, k)));
-    samples.push_back({pass["name"].get<std::string>(), std::move(values)});
+    std::string name = pass["name"].get<std::string>();
+    samples.push_back({name, std::move(values), isHostCopyPass(name)});
   }
   addTotal(samples);
   return samples;
@@ -95,9 +101,9 @@ TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
     if (name.empty()) throw InputError(path.string(), std::nullopt, prefix + ".name", "missing");
     double scale = msPerUnit(b.value("time_unit", "ns"), path, prefix + ".time_unit");
     double value = positiveNumber(b.contains("real_time") ? b["real_time"] : nlohmann::json(), path, prefix + ".real_time") * scale;
-    auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& e) { return e.first == name; });
-    if (it == samples.end()) it = samples.insert(samples.end(), {name, {}});
-    it->second.push_back(value);
+    auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& e) { return e.name == name; });
+    if (it == samples.end()) it = samples.insert(samples.end(), {name, {}, isHostCopyPass(name.substr(0, name.find('/')))});
+    it->samples.push_back(value);
   }
   return samples;
 }
@@ -135,28 +141,32 @@ Verdict decideVerdict(const PassComparison& p, const CompareOptions& options) {
 Comparison compareTimings(const TimingSamples& baseline, const TimingSamples& candidate, const CompareOptions& options) {
   Comparison c;
   auto find = [](const TimingSamples& s, const std::string& name) {
-    return std::find_if(s.begin(), s.end(), [&](const auto& e) { return e.first == name; });
+    return std::find_if(s.begin(), s.end(), [&](const auto& e) { return e.name == name; });
   };
-  for (const auto& [name, values] : baseline) {
-    if (find(candidate, name) == candidate.end()) c.onlyInBaseline.push_back(name);
-  }
-  for (const auto& [name, values] : candidate)
-    if (find(baseline, name) == baseline.end()) c.onlyInNew.push_back(name);
-  size_t compared = baseline.size() - c.onlyInBaseline.size();
-  for (const auto& [name, base] : baseline) {
-    auto other = find(candidate, name);
-    if (other == candidate.end() || base.empty() || other->second.empty()) continue;
+  for (const auto& series : baseline)
+    if (find(candidate, series.name) == candidate.end()) c.onlyInBaseline.push_back(series.name);
+  for (const auto& series : candidate)
+    if (find(baseline, series.name) == baseline.end()) c.onlyInNew.push_back(series.name);
+  auto judged = [&](const TimingSeries& s) { return !s.hostCopy || options.judgeHostCopies; };
+  // The false-alarm rate is split over the names that can fail the comparison.
+  size_t judgedCount = 0;
+  for (const auto& series : baseline) judgedCount += judged(series) && find(candidate, series.name) != candidate.end();
+  for (const auto& series : baseline) {
+    const auto& base = series.samples;
+    auto other = find(candidate, series.name);
+    if (other == candidate.end() || base.empty() || other->samples.empty()) continue;
     PassComparison p;
-    p.name = name;
+    p.name = series.name;
+    p.judged = judged(series);
     p.baselineCount = base.size();
-    p.newCount = other->second.size();
+    p.newCount = other->samples.size();
     p.baselineMedian = medianOf(base);
-    p.newMedian = medianOf(other->second);
+    p.newMedian = medianOf(other->samples);
     p.change = (p.newMedian - p.baselineMedian) / p.baselineMedian;
     p.baselineSpread = robustSpread(base) / p.baselineMedian;
     p.threshold = std::max(options.minEffect, options.spreadMultiple * p.baselineSpread);
-    p.pValue = mannWhitneyU(base, other->second).pValue;
-    p.alpha = options.alpha / double(std::max<size_t>(compared, 1));
+    p.pValue = mannWhitneyU(base, other->samples).pValue;
+    p.alpha = options.alpha / double(std::max<size_t>(judgedCount, 1));
     p.verdict = decideVerdict(p, options);
     c.passes.push_back(p);
   }
@@ -164,7 +174,7 @@ Comparison compareTimings(const TimingSamples& baseline, const TimingSamples& ca
 }
 
 bool Comparison::significantSlowdown() const {
-  return std::any_of(passes.begin(), passes.end(), [](const auto& p) { return p.verdict == Verdict::Slower; });
+  return std::any_of(passes.begin(), passes.end(), [](const auto& p) { return p.judged && p.verdict == Verdict::Slower; });
 }
 
 std::string comparisonTable(const Comparison& c) {
@@ -172,10 +182,13 @@ std::string comparisonTable(const Comparison& c) {
   for (const auto& p : c.passes) width = std::max(width, p.name.size());
   std::string table = fmt::format("{:<{}} {:>11} {:>11} {:>8} {:>9} {:>9} {:>7}  {}\n", "name", width, "base ms",
                                   "new ms", "change", "threshold", "p", "n", "verdict");
-  for (const auto& p : c.passes)
+  for (const auto& p : c.passes) {
+    std::string verdict = verdictText(p.verdict);
+    if (!p.judged) verdict += " (host copy: not judged)";
     table += fmt::format("{:<{}} {:>11.4f} {:>11.4f} {:>+7.1f}% {:>8.1f}% {:>9.2g} {:>3}/{:<3}  {}\n", p.name, width,
                          p.baselineMedian, p.newMedian, 100 * p.change, 100 * p.threshold, p.pValue, p.baselineCount,
-                         p.newCount, verdictText(p.verdict));
+                         p.newCount, verdict);
+  }
   for (const auto& name : c.onlyInBaseline) table += fmt::format("only in baseline: {}\n", name);
   for (const auto& name : c.onlyInNew) table += fmt::format("only in new: {}\n", name);
   return table;
@@ -185,7 +198,7 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& p : c.passes)
     passes.push_back({{"name", p.name}, {"verdict", verdictText(p.verdict)}, {"baseline_median_ms", p.baselineMedian},
-                      {"new_median_ms", p.newMedian}, {"change", p.change}, {"threshold", p.threshold},
+                      {"judged", p.judged}, {"new_median_ms", p.newMedian}, {"change", p.change}, {"threshold", p.threshold},
                       {"baseline_relative_spread", p.baselineSpread}, {"p_value", p.pValue}, {"alpha", p.alpha},
                       {"baseline_samples", p.baselineCount}, {"new_samples", p.newCount}});
   return {{"passes", passes},
@@ -193,7 +206,8 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
           {"only_in_new", c.onlyInNew},
           {"significant_slowdown", c.significantSlowdown()},
           {"options", {{"alpha", options.alpha}, {"min_effect", options.minEffect},
-                       {"spread_multiple", options.spreadMultiple}, {"min_samples", options.minSamples}}}};
+                       {"spread_multiple", options.spreadMultiple}, {"min_samples", options.minSamples},
+                       {"judge_host_copies", options.judgeHostCopies}}}};
 }
 
 }  // namespace aor

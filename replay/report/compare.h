@@ -10,12 +10,18 @@
 
 namespace aor {
 
-// Timing samples in milliseconds per pass or benchmark name, in file order.
-using TimingSamples = std::vector<std::pair<std::string, std::vector<double>>>;
+// Timing samples in milliseconds of one pass or benchmark.
+struct TimingSeries {
+  std::string name;
+  std::vector<double> samples;
+  bool hostCopy = false;  // the harness's upload or read-back (passes/pass_names.h): not judged by default
+};
+using TimingSamples = std::vector<TimingSeries>;  // in file order
 
-// Reads report.json (passes[].gpu_ms.samples, plus "total": the per-run sum when every pass has
-// the same runs) or Google Benchmark JSON (iteration entries' real_time, which is the manual GPU
-// time when the benchmark uses it). Throws InputError naming the file and field.
+// Reads report.json (passes[].gpu_ms.samples, plus "total": the per-run sum of the compute passes
+// when every pass has the same runs) or Google Benchmark JSON (iteration entries' real_time, which
+// is the manual GPU time when the benchmark uses it; a name whose first segment is a host-copy
+// pass is a host copy). Throws InputError naming the file and field.
 TimingSamples loadTimingSamples(const std::filesystem::path& path);
 
 struct CompareOptions {
@@ -23,6 +29,7 @@ struct CompareOptions {
   double minEffect = 0.02;      // smallest relative median change worth a verdict
   double spreadMultiple = 2.0;  // ...and at least this many baseline spreads (robust, relative)
   size_t minSamples = 5;        // per side; fewer cannot reach significance at useful alpha
+  bool judgeHostCopies = false; // host copies vary with host memory placement from process to process
 };
 
 enum class Verdict { Same, Faster, Slower, Unknown };
@@ -38,12 +45,13 @@ struct PassComparison {
   double pValue = 1;          // Mann-Whitney U, two-sided
   double alpha = 0;           // per-name level after the Bonferroni split
   Verdict verdict = Verdict::Unknown;
+  bool judged = true;         // false for host copies unless CompareOptions::judgeHostCopies: shown, never failing
 };
 
 struct Comparison {
   std::vector<PassComparison> passes;  // names present in both, baseline order
   std::vector<std::string> onlyInBaseline, onlyInNew;
-  bool significantSlowdown() const;
+  bool significantSlowdown() const;  // some judged name is slower
 };
 
 Comparison compareTimings(const TimingSamples& baseline, const TimingSamples& candidate, const CompareOptions& options);

@@ -151,6 +151,28 @@ TEST(Compare, NamesInOnlyOneRunAreListedNotCompared) {
   EXPECT_EQ(json["significant_slowdown"], false);
 }
 
+TEST(Compare, HostCopiesAreShownButNotJudgedUnlessAsked) {
+  std::vector<double> ones(10, 1.0), twos(10, 2.0);
+  TimingSamples base{{"gtao", ones}, {"readback", ones, true}};
+  TimingSamples slowCopy{{"gtao", ones}, {"readback", twos, true}};
+  auto c = compareTimings(base, slowCopy, CompareOptions{});
+  ASSERT_EQ(c.passes.size(), 2u);
+  EXPECT_TRUE(c.passes[0].judged);
+  EXPECT_FALSE(c.passes[1].judged);
+  EXPECT_EQ(c.passes[1].verdict, Verdict::Slower);  // still measured and shown
+  EXPECT_FALSE(c.significantSlowdown());
+  EXPECT_EQ(c.passes[0].alpha, 0.01) << "the false-alarm rate is split over judged names only";
+  EXPECT_NE(comparisonTable(c).find("slower (host copy: not judged)"), std::string::npos) << comparisonTable(c);
+  EXPECT_EQ(comparisonJson(c, CompareOptions{})["passes"][1]["judged"], false);
+
+  CompareOptions judgeCopies;
+  judgeCopies.judgeHostCopies = true;
+  auto judged = compareTimings(base, slowCopy, judgeCopies);
+  EXPECT_TRUE(judged.passes[1].judged);
+  EXPECT_TRUE(judged.significantSlowdown());
+  EXPECT_EQ(judged.passes[0].alpha, 0.005);
+}
+
 // One scratch folder per process, emptied once (scratchDir empties on every call); file names differ per test.
 const std::filesystem::path& scratch() {
   static const auto dir = test::scratchDir("compare");
@@ -173,9 +195,23 @@ TEST(CompareInput, ReportJsonGivesPassesAndTheirPerRunTotal) {
   auto path = writeFile("report.json", reportWith({1, 2, 3}, {0.5, 0.25, 0.125}));
   auto samples = loadTimingSamples(path);
   ASSERT_EQ(samples.size(), 3u);
-  EXPECT_EQ(samples[0].first, "gtao");
-  EXPECT_EQ(samples[2].first, "total");
-  EXPECT_EQ(samples[2].second, (std::vector<double>{1.5, 2.25, 3.125}));
+  EXPECT_EQ(samples[0].name, "gtao");
+  EXPECT_EQ(samples[2].name, "total");
+  EXPECT_EQ(samples[2].samples, (std::vector<double>{1.5, 2.25, 3.125}));
+}
+
+TEST(CompareInput, ReportJsonMarksHostCopiesAndLeavesThemOutOfTheTotal) {
+  auto report = reportWith({1, 2, 3}, {0.5, 0.25, 0.125});
+  report["passes"].push_back({{"name", "readback"}, {"gpu_ms", {{"median", 0}, {"samples", {10, 20, 30}}}}});
+  report["passes"].push_back({{"name", "upload"}, {"gpu_ms", {{"median", 0}, {"samples", {40, 50, 60}}}}});
+  auto samples = loadTimingSamples(writeFile("copies.json", report));
+  ASSERT_EQ(samples.size(), 5u);
+  EXPECT_FALSE(samples[0].hostCopy);
+  EXPECT_TRUE(samples[2].hostCopy);
+  EXPECT_TRUE(samples[3].hostCopy);
+  EXPECT_EQ(samples[4].name, "total");
+  EXPECT_FALSE(samples[4].hostCopy);
+  EXPECT_EQ(samples[4].samples, (std::vector<double>{1.5, 2.25, 3.125})) << "the compute passes only";
 }
 
 TEST(CompareInput, GoogleBenchmarkJsonUsesIterationsInMilliseconds) {
@@ -189,8 +225,8 @@ TEST(CompareInput, GoogleBenchmarkJsonUsesIterationsInMilliseconds) {
                         {"real_time", 2.0}, {"time_unit", "ms"}}}}};
   auto samples = loadTimingSamples(writeFile("bench.json", doc));
   ASSERT_EQ(samples.size(), 1u);
-  EXPECT_EQ(samples[0].first, "BM_Gtao");
-  EXPECT_EQ(samples[0].second, (std::vector<double>{1.5, 2.5}));
+  EXPECT_EQ(samples[0].name, "BM_Gtao");
+  EXPECT_EQ(samples[0].samples, (std::vector<double>{1.5, 2.5}));
 }
 
 TEST(CompareInput, BenchmarkNamesMatchAcrossRepetitionCounts) {
@@ -204,10 +240,13 @@ TEST(CompareInput, BenchmarkNamesMatchAcrossRepetitionCounts) {
   auto twenty = bench("twenty.json", "gtao/s3x3/640x360/iterations:1/repeats:20/manual_time", 20);
   auto last = bench("last.json", "gtao/s3x3/640x360/repeats:5", 5);
   ASSERT_EQ(ten.size(), 1u);
-  EXPECT_EQ(ten[0].first, "gtao/s3x3/640x360/iterations:1/manual_time");
-  EXPECT_EQ(twenty[0].first, ten[0].first);
-  EXPECT_EQ(twenty[0].second.size(), 20u);
-  EXPECT_EQ(last[0].first, "gtao/s3x3/640x360");
+  EXPECT_EQ(ten[0].name, "gtao/s3x3/640x360/iterations:1/manual_time");
+  EXPECT_EQ(twenty[0].name, ten[0].name);
+  EXPECT_EQ(twenty[0].samples.size(), 20u);
+  EXPECT_EQ(last[0].name, "gtao/s3x3/640x360");
+  EXPECT_FALSE(ten[0].hostCopy);
+  EXPECT_TRUE(bench("copy.json", "readback/s3x3/640x360/repeats:5", 5)[0].hostCopy);
+  EXPECT_FALSE(bench("pipeline.json", "pipeline/s3x3/640x360/repeats:5", 5)[0].hostCopy);
 }
 
 TEST(CompareInput, BadInputNamesTheFileAndField) {
@@ -263,6 +302,22 @@ TEST(CompareCommand, ExitCodesTableAndJson) {
   r = test::runAoreplay("compare " + base.string() + " " + (scratch() / "nope.json").string());
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("nope.json"), std::string::npos) << r.output;
+}
+
+TEST(CompareCommand, ASlowerHostCopyFailsOnlyWhenAskedTo) {
+  std::mt19937 rng(4);
+  auto withReadback = [&](double readbackMs) {
+    auto report = reportWith(noisyTimes(rng, 2, 20, 0.01), noisyTimes(rng, 1, 20, 0.01));
+    report["passes"].push_back({{"name", "readback"}, {"gpu_ms", {{"median", 0}, {"samples", noisyTimes(rng, readbackMs, 20, 0.01)}}}});
+    return report;
+  };
+  auto base = writeFile("copy-base.json", withReadback(0.1));
+  auto slowCopy = writeFile("copy-slow.json", withReadback(0.2));
+  auto r = test::runAoreplay("compare " + base.string() + " " + slowCopy.string());
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("slower (host copy: not judged)"), std::string::npos) << r.output;
+  r = test::runAoreplay("compare " + base.string() + " " + slowCopy.string() + " --judge-host-copies");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
 }
 
 }  // namespace
