@@ -91,7 +91,7 @@ int runCommand(const RunArgs& args) {
   options.keepHistoryOnCut = args.keepHistoryOnCut;
   options.cameraJump = args.cameraJump;
   options.progress = printProgress;
-  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out));
+  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), "report.json");
 
   ReplayResult result;
   RunAnalysis analysis;

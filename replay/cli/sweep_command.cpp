@@ -102,7 +102,7 @@ int sweepCommand(const SweepArgs& args) {
     start = comma + 1;
   }
   auto configs = expandSweep(options.settings, presets, args.grid);  // bad presets/grids fail before any work
-  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out));
+  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out), "sweep.json");
 
   SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
   std::vector<SweepRow> rows;

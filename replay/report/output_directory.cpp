@@ -14,11 +14,22 @@ namespace aor {
 
 namespace fs = std::filesystem;
 
-OutputDirectory::OutputDirectory(fs::path finalPath) : final_(fs::absolute(std::move(finalPath)).lexically_normal()) {
+OutputDirectory::OutputDirectory(fs::path finalPath, const std::string& marker)
+    : final_(fs::absolute(std::move(finalPath)).lexically_normal()) {
   if (final_.filename().empty()) final_ = final_.parent_path();
+  auto fail = [&](const std::string& problem) { return InputError(final_.string(), std::nullopt, "--out", problem); };
+  std::error_code ec;
+  auto status = fs::symlink_status(final_, ec);
+  if (fs::exists(status)) {
+    if (fs::is_symlink(status)) throw fail("is a symbolic link; not replacing it");
+    if (!fs::is_directory(status)) throw fail("exists and is not a folder; not replacing it");
+    if (!fs::exists(final_ / marker) && !fs::is_empty(final_, ec))
+      throw fail(fmt::format("exists, is not empty and holds no {} (not an earlier result); not replacing it", marker));
+  }
   staging_ = final_.parent_path() / fmt::format(".{}.tmp-{}", final_.filename().string(), getpid());
-  fs::remove_all(staging_);
-  fs::create_directories(staging_);
+  fs::remove_all(staging_, ec);
+  fs::create_directories(staging_, ec);
+  if (ec) throw fail(fmt::format("cannot create {}: {}", staging_.string(), ec.message()));
 }
 
 OutputDirectory::~OutputDirectory() {

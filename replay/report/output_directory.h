@@ -8,14 +8,18 @@ namespace aor {
 
 class OutputDirectory {
  public:
-  explicit OutputDirectory(std::filesystem::path finalPath);
+  // `marker` is the file every earlier result of the same kind holds (report.json, sweep.json).
+  // Committing replaces finalPath, i.e. deletes it: so an existing finalPath must be an empty
+  // folder or one holding `marker`, which is checked here, before any work. Throws InputError
+  // (field --out) otherwise, or when the staging folder cannot be created.
+  OutputDirectory(std::filesystem::path finalPath, const std::string& marker);
   ~OutputDirectory();  // removes the staging folder unless committed
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
 
   const std::filesystem::path& staging() const { return staging_; }
   const std::filesystem::path& finalPath() const { return final_; }
-  // Replaces any previous result at finalPath with the staged one.
+  // Replaces the previous result at finalPath, if any, with the staged one.
   void commit();
 
  private:

@@ -193,6 +193,33 @@ std::string contents(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Committing a result replaces --out, i.e. deletes it: only an earlier result (or an empty folder)
+// may be replaced, and the refusal comes before any replay.
+TEST_F(Cli, RunAndSweepReplaceOnlyEarlierResults) {
+  auto dir = scratchDir("cli-out-guard");
+  std::string cap = capture().string();
+  auto precious = dir / "precious";
+  fs::create_directories(precious);
+  std::ofstream(precious / "notes.txt") << "keep me";
+  std::ofstream(dir / "file.txt") << "keep me too";
+  for (const char* command : {"run", "sweep"}) {
+    for (const auto& out : {precious, dir / "file.txt", dir / "file.txt" / "below"}) {
+      auto r = runAoreplay(fmt::format("{} {} --frames 0:1 --out {}", command, cap, out.string()));
+      EXPECT_EQ(r.exitCode, 2) << command << " " << out << "\n" << r.output;
+      EXPECT_NE(r.output.find(out.string()), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+    }
+  }
+  EXPECT_EQ(listing(dir), (std::set<std::string>{"file.txt", "precious", "precious/notes.txt"}));
+  EXPECT_EQ(contents(precious / "notes.txt"), "keep me");
+
+  auto earlier = dir / "earlier";
+  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", cap, earlier.string())).exitCode, 0);
+  auto again = runAoreplay(fmt::format("run {} --frames 0:2 --no-images --out {}", cap, earlier.string()));
+  EXPECT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_EQ(readJson(earlier / "report.json")["frames"].size(), 2u) << "the earlier result was replaced";
+}
+
 TEST_F(Cli, GraphCommandRefusesAnUnwritableDotPathAndLeavesNothingBehind) {
   auto dir = scratchDir("cli-graph-unwritable");
   fs::create_directory(dir / "folder");
