@@ -9,7 +9,7 @@
 #include "capture/input_error.h"
 #include "cli/handlers.h"
 #include "report/compare.h"
-#include "report/run_outputs.h"
+#include "report/output_directory.h"
 
 namespace aor::cli {
 namespace {
@@ -40,7 +40,7 @@ int compareCommand(const CompareArgs& args) {
   if (comparison.passes.empty())
     throw InputError(args.candidate, std::nullopt, "", fmt::format("no pass or benchmark name in common with {}", args.baseline));
   fmt::print("{}", comparisonTable(comparison));
-  if (!args.json.empty()) writeJson(args.json, comparisonJson(comparison, args.options));
+  if (!args.json.empty()) writeFileAtomically(args.json, comparisonJson(comparison, args.options).dump(2) + "\n");
   return comparison.significantSlowdown() ? kExitFailed : kExitOk;
 }
 

@@ -302,6 +302,17 @@ TEST(CompareCommand, ExitCodesTableAndJson) {
   r = test::runAoreplay("compare " + base.string() + " " + (scratch() / "nope.json").string());
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("nope.json"), std::string::npos) << r.output;
+
+  // An unwritable --json is named, exits 2, and leaves nothing behind.
+  auto underAFile = base / "verdicts.json";
+  r = test::runAoreplay("compare " + base.string() + " " + same.string() + " --json " + underAFile.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(underAFile.string()), std::string::npos) << r.output;
+  r = test::runAoreplay("compare " + base.string() + " " + same.string() + " --json " + scratch().string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("names a folder"), std::string::npos) << r.output;
+  for (const auto& entry : std::filesystem::directory_iterator(scratch()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 }
 
 TEST(CompareCommand, ASlowerHostCopyFailsOnlyWhenAskedTo) {
