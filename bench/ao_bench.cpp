@@ -2,8 +2,8 @@
 // Vulkan timestamp queries, reported to Google Benchmark as manual time (so its JSON is what
 // Debian's compare.py and `aoreplay compare` read).
 //
-// Each configuration replays frames 0:2 of the capture once (warm-ups first, lavapipe compiles
-// shaders on first use) with `--reps` timed executions per frame; the second frame has valid
+// Each configuration replays frames 0:2 of the capture once (pipelines are compiled in the
+// replay's set-up, warm-ups run first) with `--reps` timed executions per frame; the second frame has valid
 // history, so the temporal pass runs. Its timed executions are the samples: benchmark repetition i
 // reports execution i. The GPU work is real and measured per execution; only the bookkeeping is
 // batched, so setting up Vulkan pipelines is not paid once per sample.
@@ -11,10 +11,10 @@
 // Own flags (before Google Benchmark's): --sizes=320x180,640x360,1920x1080  --presets=low,medium,high,ultra
 // --reps=N (default 10)  --warmup=N (default 2)  --warmup-ms=MS (default 300)  --device=SEL  --capture=DIR  --cache=DIR
 // --scaling-size=WxH: where time against slices x steps is measured (default: the second size).
-// Sizes are read by aor::parseSize (options/size.h), as `aoreplay capture --size` is; a bad one
-// exits 2 before any device is opened.
-// --extra-slices=N adds N GTAO slices to every configuration without renaming it: a real slowdown
-// for checking that `aoreplay compare` detects one.
+// Sizes are read by aor::parseSize (options/size.h), as `aoreplay capture --size` is, numbers by
+// aor::parseInt/parseNumber (options/number.h); a bad value exits 2 before any device is opened.
+// --extra-slices=N (0..23) adds N GTAO slices to every configuration without renaming it: a real
+// slowdown for checking that `aoreplay compare` detects one (ultra's 9 + 23 is the 32-slice limit).
 //
 // Warm-up is by time as well as by count: a GPU needs some hundred milliseconds of steady work to
 // leave its idle clocks, and a configuration measured in a 5 ms burst is measured at whatever clock
@@ -33,6 +33,7 @@
 #include "bench_capture.h"
 #include "bench_scaling.h"
 #include "capture/input_error.h"
+#include "options/number.h"
 #include "options/size.h"
 #include "passes/pass_names.h"
 #include "pipeline/replayer.h"
@@ -222,17 +223,16 @@ Options parseOwnFlags(int& argc, char** argv) {
       if (o.sizes.empty()) throw InputError("", std::nullopt, "--sizes", "names no size (expected WxH,WxH,...)");
     } else if (auto ss = value("--scaling-size")) o.scalingSize = parseSize(*ss, "--scaling-size");
     else if (auto p = value("--presets")) o.presets = splitList(*p);
-    else if (auto r = value("--reps")) o.reps = std::stoi(*r);
-    else if (auto wu = value("--warmup")) o.warmup = std::stoi(*wu);
-    else if (auto wm = value("--warmup-ms")) o.warmupMs = std::stod(*wm);
-    else if (auto es = value("--extra-slices")) o.extraSlices = std::stoi(*es);
+    else if (auto r = value("--reps")) o.reps = parseInt(*r, "--reps", 5, 100000);  // compare needs 5 a side
+    else if (auto wu = value("--warmup")) o.warmup = parseInt(*wu, "--warmup", 0, 100000);
+    else if (auto wm = value("--warmup-ms")) o.warmupMs = parseNumber(*wm, "--warmup-ms", 0.0, 600000.0);
+    else if (auto es = value("--extra-slices")) o.extraSlices = parseInt(*es, "--extra-slices", 0, 23);
     else if (auto d = value("--device")) o.device = *d;
     else if (auto c = value("--capture")) o.capture = *c;
     else if (auto c2 = value("--cache")) o.cache = *c2;
     else argv[kept++] = argv[i];
   }
   argc = kept;
-  if (o.reps < 5) throw std::invalid_argument("--reps must be at least 5 (the comparison needs samples)");
   return o;
 }
 
