@@ -29,19 +29,28 @@ int graphCommand(const GraphArgs& args) {
   AoSettings settings = args.settings.resolve(capture);
   auto [begin, end] = args.settings.frameRange(capture);
   bool temporalWanted = end - begin > 1 && settings.temporal > 0.0f;
-  // A steady-state frame: the second of the range when there is one, with history valid.
-  int index = temporalWanted ? begin + 1 : begin;
-  const auto& frame = capture.frames[size_t(index)];
-  FrameCamera camera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
-  const auto& prev = capture.frames[size_t(temporalWanted ? index - 1 : index)];
-  FrameCamera previous{prev.view, prev.projection, capture.width, capture.height, uint32_t(index)};
-  AoFrameInputs inputs{camera, previous, capture.hasNormals, temporalWanted, temporalWanted, settings};
+  auto camera = [&](int index) {
+    const auto& frame = capture.frames[size_t(index)];
+    return FrameCamera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
+  };
 
   VulkanContext noDevice;  // pipelines are created only when a pass executes, which never happens here
   PassPipelines pipelines(noDevice);
   GpuBuffer placeholder;
   AoFrameBuffers buffers{&placeholder, capture.hasNormals ? &placeholder : nullptr, &placeholder};
-  auto frameGraph = buildAoFrameGraph(inputs, pipelines, nullptr, buffers);
+  // A steady-state frame: the second of the range when there is one, with history valid and its
+  // history images in the states the first frame left them in (as in a replay).
+  int index = begin;
+  HistoryStates history;
+  if (temporalWanted) {
+    AoFrameInputs first{camera(begin), camera(begin), capture.hasNormals, true, false, settings};
+    auto firstGraph = buildAoFrameGraph(first, pipelines, {}, buffers);
+    history = historyStatesAfter(firstGraph.graph, firstGraph.graph.compile());
+    index = begin + 1;
+  }
+  AoFrameInputs inputs{camera(index), camera(temporalWanted ? index - 1 : index), capture.hasNormals, temporalWanted,
+                       temporalWanted, settings};
+  auto frameGraph = buildAoFrameGraph(inputs, pipelines, history, buffers);
   auto compiled = frameGraph.graph.compile();
 
   fmt::print("capture: {} ({}x{}), frame {} of replay {}:{}, settings: {}\n", capture.name, capture.width,

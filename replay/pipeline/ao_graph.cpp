@@ -1,20 +1,28 @@
 #include "pipeline/ao_graph.h"
 
 #include <string>
-
-#include "pipeline/graph_resources.h"
+#include <utility>
 
 namespace aor {
-namespace {
 
-graph::ImageState historyStateOf(const GraphResources* resources, const char* base, bool current) {
-  return resources ? resources->historyState(base, current) : graph::ImageState{};
+HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
+  std::map<std::pair<std::string, bool>, graph::ImageState> next;  // (base, current next frame) -> state
+  for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {
+    const auto& decl = graph.resources()[id];
+    if (decl.kind == graph::ResourceKind::History && compiled.resources[id].used)
+      next[{decl.historyBase, !decl.historyCurrent}] = compiled.resources[id].finalState;
+  }
+  return [next = std::move(next)](const std::string& base, bool current) {
+    auto it = next.find({base, current});
+    return it == next.end() ? graph::ImageState{} : it->second;
+  };
 }
 
-}  // namespace
-
-AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines, const GraphResources* resources,
+AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines, const HistoryStates& historyStates,
                                const AoFrameBuffers& buffers) {
+  auto historyStateOf = [&](const char* base, bool current) {
+    return historyStates ? historyStates(base, current) : graph::ImageState{};
+  };
   AoFrameGraph frame;
   auto& g = frame.graph;
   const auto& cam = in.camera;
@@ -34,8 +42,7 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
   graph::ResourceId distance;
   if (in.temporalWanted) {
     distanceHistory = g.createHistory(kDistanceHistory, {w, h, VK_FORMAT_R32_SFLOAT}, in.historyValid,
-                                      historyStateOf(resources, kDistanceHistory, false),
-                                      historyStateOf(resources, kDistanceHistory, true));
+                                      historyStateOf(kDistanceHistory, false), historyStateOf(kDistanceHistory, true));
     distance = distanceHistory.current;
   } else {
     distance = g.createImage("view_distance", {w, h, VK_FORMAT_R32_SFLOAT});
@@ -58,7 +65,7 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
 
   if (in.temporalWanted) {
     aoHistory = g.createHistory(kAoHistory, {w, h, aoFormat(bent)}, in.historyValid,
-                                historyStateOf(resources, kAoHistory, false), historyStateOf(resources, kAoHistory, true));
+                                historyStateOf(kAoHistory, false), historyStateOf(kAoHistory, true));
     TemporalInputs t{denoised, distance, aoHistory.previous, distanceHistory.previous, aoHistory.current,
                      in.previousCamera};
     frame.finalAo = addTemporalPass(g, pipelines, cam, settings, t);

@@ -3,6 +3,7 @@
 // of seed 000 is declared; what a run does not need (normal reconstruction when the capture has
 // normals, spatial with spatial=0, temporal for single frames or temporal=0) is left unread and
 // culled by compile(), which records why.
+#include <functional>
 #include <map>
 #include <string>
 
@@ -11,8 +12,6 @@
 #include "pipeline/settings.h"
 
 namespace aor {
-
-class GraphResources;
 
 struct AoFrameInputs {
   FrameCamera camera;
@@ -40,8 +39,17 @@ inline constexpr const char* kNormalsImage = "normals";
 inline constexpr const char* kAoHistory = "ao_history";
 inline constexpr const char* kDistanceHistory = "distance_history";
 
-// `resources` supplies the states of persistent images; null when only inspecting the graph.
-AoFrameGraph buildAoFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelines, const GraphResources* resources,
+// The state earlier frames left a history image in (`base` as kAoHistory; `current`: the image this
+// frame writes). In a replay, GraphResources tracks it; empty means nothing ran before (UNDEFINED).
+using HistoryStates = std::function<graph::ImageState(const std::string& base, bool current)>;
+
+AoFrameGraph buildAoFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelines, const HistoryStates& historyStates,
                                const AoFrameBuffers& buffers);
+
+// The history states the frame after `graph` starts from, for tools that compile frames without
+// running them (`aoreplay graph`): its `current` images become `previous`, and it writes into the
+// images that were `previous` (UNDEFINED where there was none, as after a replay's first frame).
+// The same bookkeeping as GraphResources::keepFinalStates and swapHistory.
+HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled);
 
 }  // namespace aor

@@ -148,6 +148,10 @@ struct HistoryTracker {
 };
 
 
+HistoryStates historyStatesOf(const GraphResources& resources) {
+  return [&resources](const std::string& base, bool current) { return resources.historyState(base, current); };
+}
+
 // What running one frame's graph gives back: timings of the timed runs, the host time of all runs
 // and, when asked, the facts of its compiled graph that the report records.
 struct FrameGraphRuns {
@@ -169,7 +173,7 @@ FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelin
   FrameGraphRuns runs;
   for (int run = 0; run < warmup + repeat; ++run) {
     auto start = Clock::now();
-    auto frameGraph = buildAoFrameGraph(inputs, pipelines, &resources, buffers);
+    auto frameGraph = buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers);
     auto compiled = frameGraph.graph.compile();
     executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
     auto recorded = Clock::now();
@@ -204,7 +208,7 @@ FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelin
 // compilation (about 17 ms on lavapipe) then never lands in a frame's time.
 void prepareFirstFrame(const AoFrameInputs& inputs, PassPipelines& pipelines, GraphResources& resources,
                        GraphExecutor& executor, const AoFrameBuffers& buffers) {
-  auto frameGraph = buildAoFrameGraph(inputs, pipelines, &resources, buffers);
+  auto frameGraph = buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers);
   auto compiled = frameGraph.graph.compile();
   executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
   if (inputs.temporalWanted) pipelines.temporal(inputs.settings.bent != 0, true);

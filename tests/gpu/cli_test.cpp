@@ -179,6 +179,11 @@ TEST_F(Cli, GraphCommandExplainsCulledPassesAndWritesDot) {
   if (std::system("command -v dot > /dev/null") == 0) {
     EXPECT_EQ(std::system(fmt::format("dot -Tsvg {} -o {}.svg", dot.string(), dot.string()).c_str()), 0);
   }
+  // Two frames: the second one's history starts where the first left it, as in a replay.
+  r = runAoreplay(fmt::format("graph {} --frames 0:2 --dot {}", capture().string(), dot.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("barrier ao_history.previous: TRANSFER_SRC_OPTIMAL -> GENERAL"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("ao_history.previous: UNDEFINED"), std::string::npos) << r.output;
 }
 
 // Everything under `dir` (relative paths, folders included), to see what a command left behind.

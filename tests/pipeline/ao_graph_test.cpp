@@ -1,5 +1,7 @@
 // The real AO frame graph, compiled without a GPU: which passes and resources a capture and a run
 // need (issue "Build only what a scene and a run need"), checked with the graph tests' checker.
+#include <optional>
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -51,7 +53,7 @@ struct Case {
   AoSettings settings;
 };
 
-Built build(const Case& c) {
+Built build(const Case& c, const HistoryStates& history = {}) {
   static VulkanContext noDevice;  // pipelines are only created when a pass executes
   static PassPipelines pipelines(noDevice);
   static GpuBuffer placeholder;
@@ -61,7 +63,7 @@ Built build(const Case& c) {
   camera.projection[3][2] = -0.1f;
   AoFrameInputs inputs{camera, camera, c.hasNormals, c.multiFrame && c.settings.temporal > 0, c.historyValid, c.settings};
   AoFrameBuffers buffers{&placeholder, &placeholder, &placeholder};
-  Built b{buildAoFrameGraph(inputs, pipelines, nullptr, buffers), {}};
+  Built b{buildAoFrameGraph(inputs, pipelines, history, buffers), {}};
   b.compiled = b.frame.graph.compile();
   graph::testing::checkCompiled(b.frame.graph, b.compiled);  // lifetimes, aliasing, every hazard covered by barriers
   return b;
@@ -73,6 +75,43 @@ TEST(AoGraph, DefaultMultiFrameReplayRunsTheThreePassesWithHistory) {
     EXPECT_TRUE(b.runs(pass)) << pass;
   EXPECT_GT(b.historyBytes(), 0u);
   EXPECT_TRUE(b.allocated("ao_history.previous"));
+}
+
+// The barrier the compiled graph puts before `pass` for `resource`, if any.
+std::optional<graph::Barrier> barrierBefore(const Built& b, const std::string& pass, const std::string& resource) {
+  for (const auto& p : b.compiled.passes) {
+    if (b.frame.graph.passes()[p.pass].name != pass) continue;
+    for (const auto& barrier : p.barriersBefore)
+      if (b.frame.graph.resources()[barrier.resource].name == resource) return barrier;
+  }
+  return std::nullopt;
+}
+
+// What `aoreplay graph` shows for a second frame: its history images start where the first frame
+// left them (the read-back's transfer read), not UNDEFINED, which would discard the history.
+TEST(AoGraph, HistoryStatesAfterAFrameAreWhatItsHistoryImagesWereLeftIn) {
+  Case first;
+  first.historyValid = false;
+  auto frame0 = build(first);
+  auto after0 = historyStatesAfter(frame0.frame.graph, frame0.compiled);
+  EXPECT_EQ(after0(kAoHistory, false).layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);  // read back last
+  EXPECT_EQ(after0(kAoHistory, false).access, VK_ACCESS_2_TRANSFER_READ_BIT);
+  EXPECT_EQ(after0(kDistanceHistory, false).layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(after0(kAoHistory, true).layout, VK_IMAGE_LAYOUT_UNDEFINED) << "frame 1 writes a fresh image";
+
+  auto frame1 = build({}, after0);
+  auto toTemporal = barrierBefore(frame1, "temporal", "ao_history.previous");
+  ASSERT_TRUE(toTemporal.has_value());
+  EXPECT_EQ(toTemporal->before.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  EXPECT_EQ(toTemporal->after.layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_FALSE(barrierBefore(frame1, "temporal", "distance_history.previous").has_value())
+      << "read after read in the same layout needs no barrier";
+  EXPECT_EQ(barrierBefore(build({}), "temporal", "ao_history.previous")->before.layout, VK_IMAGE_LAYOUT_UNDEFINED)
+      << "without the first frame's states the same barrier would discard the history";
+
+  auto after1 = historyStatesAfter(frame1.frame.graph, frame1.compiled);
+  EXPECT_EQ(after1(kAoHistory, true).layout, VK_IMAGE_LAYOUT_GENERAL) << "frame 2 writes what frame 1 read";
+  EXPECT_EQ(after1(kAoHistory, false).layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
 TEST(AoGraph, SingleFrameReplayHasNoTemporalPassAndNoHistoryMemory) {
