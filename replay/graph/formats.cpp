@@ -122,12 +122,15 @@ ImageState requiredState(Access access) {
     case Access::TransferWrite:
       return {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+    case Access::ClearWrite:
+      return {VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+              VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
   }
   return {};
 }
 
 bool isWrite(Access access) {
-  return access == Access::StorageWrite || access == Access::TransferWrite;
+  return access == Access::StorageWrite || access == Access::TransferWrite || access == Access::ClearWrite;
 }
 
 ImageState requiredState(const PassDecl& pass, ResourceId id) {
@@ -155,6 +158,7 @@ const char* accessName(Access access) {
     case Access::StorageWrite: return "storage write";
     case Access::TransferRead: return "transfer read";
     case Access::TransferWrite: return "transfer write";
+    case Access::ClearWrite: return "clear";
   }
   return "?";
 }

@@ -26,7 +26,8 @@ VkImageUsageFlags usageOf(Access access) {
     case Access::StorageRead:
     case Access::StorageWrite: return VK_IMAGE_USAGE_STORAGE_BIT;
     case Access::TransferRead: return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    case Access::TransferWrite: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    case Access::TransferWrite:
+    case Access::ClearWrite: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   }
   return 0;
 }

@@ -30,7 +30,8 @@ enum class ResourceKind : uint8_t {
   History,    // one half of a history pair: persists across frames, never aliased
 };
 
-enum class Access : uint8_t { SampledRead, StorageRead, StorageWrite, TransferRead, TransferWrite };
+// ClearWrite is vkCmdClearColorImage: a transfer write in its own pipeline stage (CLEAR, not COPY).
+enum class Access : uint8_t { SampledRead, StorageRead, StorageWrite, TransferRead, TransferWrite, ClearWrite };
 
 // Synchronisation state of an image: what last touched it and in which layout it was left.
 struct ImageState {

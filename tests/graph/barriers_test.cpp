@@ -20,6 +20,8 @@ constexpr ImageState kTransferRead{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRA
                                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
 constexpr ImageState kTransferWrite{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+constexpr ImageState kClearWrite{VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
 constexpr ImageState kFresh{};
 
 #define EXPECT_STATE(actual, expected)                                              \
@@ -32,11 +34,13 @@ TEST(GraphRequiredState, MatchesTheAccessTable) {
   EXPECT_STATE(requiredState(Access::StorageWrite), kStorageWrite);
   EXPECT_STATE(requiredState(Access::TransferRead), kTransferRead);
   EXPECT_STATE(requiredState(Access::TransferWrite), kTransferWrite);
+  EXPECT_STATE(requiredState(Access::ClearWrite), kClearWrite);
   EXPECT_FALSE(isWrite(Access::SampledRead));
   EXPECT_FALSE(isWrite(Access::StorageRead));
   EXPECT_FALSE(isWrite(Access::TransferRead));
   EXPECT_TRUE(isWrite(Access::StorageWrite));
   EXPECT_TRUE(isWrite(Access::TransferWrite));
+  EXPECT_TRUE(isWrite(Access::ClearWrite));
 }
 
 TEST(GraphBarriers, PipelineBarriersAreExactlyTheNeededOnes) {

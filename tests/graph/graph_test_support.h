@@ -321,7 +321,8 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
           case Access::StorageRead:
           case Access::StorageWrite: usage |= VK_IMAGE_USAGE_STORAGE_BIT; break;
           case Access::TransferRead: usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT; break;
-          case Access::TransferWrite: usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; break;
+          case Access::TransferWrite:
+          case Access::ClearWrite: usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; break;
         }
       }
     }
@@ -622,7 +623,7 @@ inline RandomGraph randomGraph(uint32_t seed) {
   std::shuffle(writable.begin(), writable.end(), rng);
 
   static const Access kReads[] = {Access::SampledRead, Access::StorageRead, Access::TransferRead};
-  static const Access kWrites[] = {Access::StorageWrite, Access::TransferWrite};
+  static const Access kWrites[] = {Access::StorageWrite, Access::TransferWrite, Access::ClearWrite};
   const int passCount = uni(3, 16);
   for (int p = 0; p < passCount; ++p) {
     std::vector<std::pair<ResourceId, Access>> reads, writes;
@@ -634,7 +635,7 @@ inline RandomGraph randomGraph(uint32_t seed) {
     for (int w = 0, n = uni(0, 2); w < n; ++w) {
       ResourceId target = writable[uni(0, static_cast<int>(writable.size()) - 1)];
       if (!reads.empty() && chance(0.15)) target = reads[uni(0, static_cast<int>(reads.size()) - 1)].first;
-      writes.emplace_back(target, kWrites[uni(0, 1)]);
+      writes.emplace_back(target, kWrites[uni(0, 2)]);
     }
     const bool side = chance(0.2) || (p == passCount - 1 && chance(0.8));
     g.addPass("pass" + std::to_string(p), [&](PassBuilder& b) {
