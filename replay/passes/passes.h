@@ -85,5 +85,8 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
                                   const AoSettings& settings, const TemporalInputs& inputs);
 // Copies `image` into a host-visible buffer; a root of the graph.
 void addReadbackPass(graph::RenderGraph& graph, graph::ResourceId image, const GpuBuffer& target);
+// Fills every channel of `image` with `value` (a side effect: never culled). Test-only fault
+// injection, see ReplayOptions::testPoisonHistoryAt.
+void addFillPass(graph::RenderGraph& graph, graph::ResourceId image, float value);
 
 }  // namespace aor

@@ -62,4 +62,19 @@ void addReadbackPass(graph::RenderGraph& graph, graph::ResourceId image, const G
       });
 }
 
+void addFillPass(graph::RenderGraph& graph, graph::ResourceId image, float value) {
+  graph.addPass(
+      "fill",
+      [&](graph::PassBuilder& b) {
+        b.write(image, graph::Access::ClearWrite);
+        b.sideEffect();
+      },
+      [image, value](graph::PassContext& ctx) {
+        VkClearColorValue color{};
+        for (float& channel : color.float32) channel = value;
+        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(ctx.cmd, ctx.image(image).image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &color, 1, &range);
+      });
+}
+
 }  // namespace aor

@@ -18,6 +18,14 @@ HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::C
   };
 }
 
+graph::RenderGraph buildHistoryPoisonGraph(const AoFrameInputs& in, const HistoryStates& historyStates, float value) {
+  graph::RenderGraph g;
+  auto history = g.createHistory(kAoHistory, {uint32_t(in.camera.width), uint32_t(in.camera.height), aoFormat(in.settings.bent != 0)},
+                                 true, historyStates(kAoHistory, false), historyStates(kAoHistory, true));
+  addFillPass(g, history.previous, value);
+  return g;
+}
+
 AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines, const HistoryStates& historyStates,
                                const AoFrameBuffers& buffers) {
   auto historyStateOf = [&](const char* base, bool current) {

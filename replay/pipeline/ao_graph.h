@@ -52,4 +52,9 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipel
 // The same bookkeeping as GraphResources::keepFinalStates and swapHistory.
 HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled);
 
+// Test-only fault injection (ReplayOptions::testPoisonHistoryAt): one pass that fills the AO
+// history's `previous` image with `value`, so a test can show on a real device what the temporal
+// pass makes of history no correct frame can leave (NaN, Inf). Never part of a normal replay.
+graph::RenderGraph buildHistoryPoisonGraph(const AoFrameInputs& inputs, const HistoryStates& historyStates, float value);
+
 }  // namespace aor

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <future>
+#include <limits>
 #include <memory>
 #include <numeric>
 
@@ -202,6 +203,16 @@ FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelin
   return runs;
 }
 
+// Test-only (ReplayOptions::testPoisonHistoryAt): overwrites the AO history the next frame reads
+// with NaN, through the graph so the barriers stay derived.
+void poisonAoHistory(const AoFrameInputs& inputs, GraphResources& resources, GraphExecutor& executor) {
+  auto poison = buildHistoryPoisonGraph(inputs, historyStatesOf(resources), std::numeric_limits<float>::quiet_NaN());
+  auto compiled = poison.compile();
+  executor.record(poison, compiled, resources.prepare(poison, compiled));
+  executor.submitAndWait();
+  resources.keepFinalStates(poison, compiled);
+}
+
 // Set-up, outside the replay's wall time as device creation is: the first frame's graph is recorded
 // once and not submitted, which creates the pipelines of its live passes and its images, and the
 // temporal pass's with-history variant, which every later frame uses, is created directly. Shader
@@ -325,6 +336,7 @@ ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const Repl
 
     AoFrameInputs inputs{camera, history.camera, capture.hasNormals, temporalWanted, record.historyValid, settings};
     StagingSlot& slot = staging.forFrame(index);
+    if (index == options.testPoisonHistoryAt && record.historyValid) poisonAoHistory(inputs, resources, executor);
     bool lastFrame = index + 1 == end;
     auto runs = runFrameGraph(inputs, pipelines, resources, executor, frameBuffers(index), options.warmup,
                               options.repeat, lastFrame);

@@ -22,6 +22,7 @@ struct ReplayOptions {
   int repeat = 1;          // timed executions per frame
   int warmup = 0;          // untimed executions per frame before the timed ones
   bool keepHistoryOnCut = false;  // test-only: breaks history invalidation on purpose
+  int testPoisonHistoryAt = -1;   // test-only: before this frame (if its history is valid) its AO history is NaN
   CameraJumpLimits cameraJump;    // history is also reset when the camera turns or moves further
   std::function<void(int done, int total)> progress;
 };

@@ -4,6 +4,7 @@
 // (replay/cpu/gtao_double.h). The measured table is written to
 // <build>/test-scratch/precision/deviation.md; replay/cpu/PRECISION.md keeps a copy.
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -445,6 +446,34 @@ TEST(StressInjection, NonFiniteHistoryIsDroppedByTheTemporalBlend) {
   // Usable history still blends (clamped to the neighbourhood), so the check above is not vacuous.
   EXPECT_NEAR(shader::temporalBlendAo(0.7f, 0.75f, 0.6f, 0.8f, 0.5f), 0.725f, 1e-6f);
   EXPECT_NEAR(shader::temporalBlendAo(0.7f, 0.1f, 0.6f, 0.8f, 0.5f), 0.65f, 1e-6f);
+}
+
+// The same on the device, where the shader compiler decides what a NaN comparison does: the AO
+// history frame 1 reads is filled with NaN on the GPU, and frame 1 must come out exactly as if it
+// had no history (the temporal pass keeps the current value, bent normal included).
+TEST(StressInjection, NanHistoryOnTheGpuGivesTheFrameWithoutHistory) {
+  auto capture = loadCapture(generatedCapture("boxes", "static", 64, 36, 2));
+  auto frame1 = [&](float temporal, int poisonAt) {
+    ReplayOptions options;
+    options.settings.temporal = temporal;
+    options.settings.radius = 1.0f;
+    options.testPoisonHistoryAt = poisonAt;
+    FrameOutput out;
+    replayCapture(validatedContext(), capture, options, [&](const FrameOutput& f) {
+      if (f.index == 1) out = f;
+    });
+    return out;
+  };
+  auto poisoned = frame1(0.9f, 1);
+  auto withoutHistory = frame1(0.0f, -1);
+  auto withHistory = frame1(0.9f, -1);
+  ASSERT_EQ(poisoned.visibility.size(), size_t(64 * 36));
+  ASSERT_EQ(poisoned.bent.size(), withoutHistory.bent.size());
+  EXPECT_TRUE(poisoned.historyValid);
+  EXPECT_EQ(std::memcmp(poisoned.visibility.data(), withoutHistory.visibility.data(), poisoned.visibility.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(poisoned.bent.data(), withoutHistory.bent.data(), poisoned.bent.size() * sizeof(float)), 0);
+  // Not vacuous: valid history does change frame 1.
+  EXPECT_NE(std::memcmp(withHistory.visibility.data(), withoutHistory.visibility.data(), poisoned.visibility.size() * sizeof(float)), 0);
 }
 
 }  // namespace
