@@ -25,11 +25,6 @@ using json = nlohmann::json;
 
 constexpr int kW = 8, kH = 6;
 
-std::string readText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary | std::ios::trunc) << text; }
 
 // A valid 8x6 capture: two frames with depth and half normals, camera looking at a tilted plane.

@@ -193,11 +193,6 @@ std::set<std::string> listing(const fs::path& dir) {
   return names;
 }
 
-std::string contents(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // Committing a result replaces --out, i.e. deletes it: only an earlier result (or an empty folder)
 // may be replaced, and the refusal comes before any replay.
 TEST_F(Cli, RunAndSweepReplaceOnlyEarlierResults) {
@@ -216,7 +211,7 @@ TEST_F(Cli, RunAndSweepReplaceOnlyEarlierResults) {
     }
   }
   EXPECT_EQ(listing(dir), (std::set<std::string>{"file.txt", "precious", "precious/notes.txt"}));
-  EXPECT_EQ(contents(precious / "notes.txt"), "keep me");
+  EXPECT_EQ(readText(precious / "notes.txt"), "keep me");
 
   auto earlier = dir / "earlier";
   ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", cap, earlier.string())).exitCode, 0);
@@ -238,7 +233,7 @@ TEST_F(Cli, GraphCommandRefusesAnUnwritableDotPathAndLeavesNothingBehind) {
     EXPECT_EQ(r.output.find("\ndot: "), std::string::npos) << dot << " claims to be written\n" << r.output;
     EXPECT_EQ(listing(dir), before) << dot << " left something behind";
   }
-  EXPECT_EQ(contents(dir / "file"), "a regular file\n");
+  EXPECT_EQ(readText(dir / "file"), "a regular file\n");
 }
 
 TEST_F(Cli, GraphCommandReplacesAnExistingDotFileWhole) {
@@ -247,7 +242,7 @@ TEST_F(Cli, GraphCommandReplacesAnExistingDotFileWhole) {
   std::ofstream(dot) << "old contents\n";
   auto r = runAoreplay(fmt::format("graph {} --frames 0:1 --dot {}", capture().string(), dot.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_EQ(contents(dot).rfind("digraph render_graph {", 0), 0u) << contents(dot);
+  EXPECT_EQ(readText(dot).rfind("digraph render_graph {", 0), 0u) << readText(dot);
   EXPECT_EQ(listing(dir), std::set<std::string>{"graph.dot"}) << "no temporary file stays beside it";
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 #include <unistd.h>
@@ -62,6 +64,11 @@ VulkanContext& validatedContext() {
     h.created = true;
   }
   return h.vk;
+}
+
+std::string readText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // CTest runs every test as its own process, two or more at once: a folder per test keeps one test
