@@ -65,7 +65,6 @@ struct Config {
   auto key() const { return std::tuple(width, height, settings.slices, settings.steps, settings.bent); }
 };
 
-
 struct Measured {
   std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution
   std::vector<double> pipelineMs;                      // sum of the compute passes, per execution

@@ -56,7 +56,6 @@ std::vector<ResourceId> aliasesOf(const CompiledGraph& compiled, ResourceId id) 
   return out;
 }
 
-
 std::string describe(const RenderGraph& graph, const CompiledGraph& compiled) {
   const auto& passes = graph.passes();
   const auto& resources = graph.resources();

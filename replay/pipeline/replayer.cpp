@@ -63,7 +63,7 @@ struct DecodedFrame {
   GBuffer gbuffer;
   int64_t invalidDepthPixels = 0, invalidNormalPixels = 0;
   float medianDistance = 0;  // for the camera-jump limit; 0 when there is no temporal pass
-  double startMs = 0;        // since the replay started
+  double startMs = 0;        // since the set-up started
   double decodeMs = 0, uploadMs = 0;
 };
 
@@ -148,9 +148,15 @@ struct HistoryTracker {
   }
 };
 
-
 HistoryStates historyStatesOf(const GraphResources& resources) {
   return [&resources](const std::string& base, bool current) { return resources.historyState(base, current); };
+}
+
+// Compiles `graph` and records it into the executor's command buffer with its physical images.
+graph::CompiledGraph compileAndRecord(const graph::RenderGraph& graph, GraphResources& resources, GraphExecutor& executor) {
+  auto compiled = graph.compile();
+  executor.record(graph, compiled, resources.prepare(graph, compiled));
+  return compiled;
 }
 
 // What running one frame's graph gives back: timings of the timed runs, the host time of all runs
@@ -175,8 +181,7 @@ FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelin
   for (int run = 0; run < warmup + repeat; ++run) {
     auto start = Clock::now();
     auto frameGraph = buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers);
-    auto compiled = frameGraph.graph.compile();
-    executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
+    auto compiled = compileAndRecord(frameGraph.graph, resources, executor);
     auto recorded = Clock::now();
     auto times = executor.submitAndWait();
     runs.recordMs += msBetween(start, recorded);
@@ -207,8 +212,7 @@ FrameGraphRuns runFrameGraph(const AoFrameInputs& inputs, PassPipelines& pipelin
 // with NaN, through the graph so the barriers stay derived.
 void poisonAoHistory(const AoFrameInputs& inputs, GraphResources& resources, GraphExecutor& executor) {
   auto poison = buildHistoryPoisonGraph(inputs, historyStatesOf(resources), std::numeric_limits<float>::quiet_NaN());
-  auto compiled = poison.compile();
-  executor.record(poison, compiled, resources.prepare(poison, compiled));
+  auto compiled = compileAndRecord(poison, resources, executor);
   executor.submitAndWait();
   resources.keepFinalStates(poison, compiled);
 }
@@ -219,9 +223,7 @@ void poisonAoHistory(const AoFrameInputs& inputs, GraphResources& resources, Gra
 // compilation (about 17 ms on lavapipe) then never lands in a frame's time.
 void prepareFirstFrame(const AoFrameInputs& inputs, PassPipelines& pipelines, GraphResources& resources,
                        GraphExecutor& executor, const AoFrameBuffers& buffers) {
-  auto frameGraph = buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers);
-  auto compiled = frameGraph.graph.compile();
-  executor.record(frameGraph.graph, compiled, resources.prepare(frameGraph.graph, compiled));
+  compileAndRecord(buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers).graph, resources, executor);
   if (inputs.temporalWanted) pipelines.temporal(inputs.settings.bent != 0, true);
 }
 
