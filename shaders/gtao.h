@@ -123,6 +123,5 @@ AOR_FUNC vec3 rotateZTo(vec3 v, vec3 x) {
   return x * c + cross(axis, x) + axis * (dot(axis, x) * h);
 }
 
-
 #include "shared_end.h"
 #endif
