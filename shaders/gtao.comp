@@ -2,6 +2,7 @@
 // Pass 1 of seed 000: horizon-search GTAO with bent normals, one thread per pixel, no shared memory.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
 #include "gtao.h"
 
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;

@@ -18,6 +18,8 @@ AOR_CONST float kGtaoFalloffRange = 0.615f;      // seed 000 / XeGTAO: flat inne
 AOR_CONST float kGoldenRatioFraction = 0.61803398875f;
 AOR_CONST uint kNoisePeriodFrames = 64u;         // seed 000: frame_index % 64
 AOR_CONST float kMinSampleOffsetPixels = 1.3f;   // first sample must leave the centre pixel
+// Largest slices x steps whose slice loop is unrolled (every preset, ultra's 9x3 included).
+AOR_CONST int kGtaoMaxUnrolledSliceSteps = 36;
 
 struct GtaoConstants {
   vec4 worldToView0;   // columns of the world->view rotation (normals are world space in captures)

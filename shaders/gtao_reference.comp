@@ -7,6 +7,7 @@
 // reference is the screen-space assumption's alone; GTAO's error against it is sampling's.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
 #include "gtao.h"
 
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;

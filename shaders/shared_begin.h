@@ -11,9 +11,14 @@ using uint = uint32_t;
 #define AOR_INOUT(T) T&
 #define AOR_CONST constexpr
 #define AOR_FUNC inline
+#define AOR_UNROLL
 #else
 #define AOR_OUT(T) out T
 #define AOR_INOUT(T) inout T
 #define AOR_CONST const
 #define AOR_FUNC
+// Asks for a loop to be unrolled fully. lavapipe's NIR leaves loops with large bodies rolled,
+// and rolled loops are slow there (gtao_pixel.glsl says how much). Needs
+// GL_EXT_control_flow_attributes in the including shader.
+#define AOR_UNROLL [[unroll]]
 #endif
