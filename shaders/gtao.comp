@@ -5,7 +5,7 @@
 #extension GL_EXT_control_flow_attributes : require
 #include "gtao.h"
 
-layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+layout(local_size_x = kGtaoWorkgroupSize, local_size_y = kGtaoWorkgroupSize) in;
 layout(constant_id = kGtaoSpecSlices) const int kSlices = 3;
 layout(constant_id = kGtaoSpecSteps) const int kSteps = 3;
 layout(constant_id = kGtaoSpecBent) const bool kBent = true;

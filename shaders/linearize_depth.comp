@@ -3,7 +3,7 @@
 #extension GL_EXT_scalar_block_layout : require
 #include "linearize_depth.h"
 
-layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+layout(local_size_x = kLinearizeWorkgroupSize, local_size_y = kLinearizeWorkgroupSize) in;
 layout(push_constant, scalar) uniform Push { LinearizeConstants pc; };
 layout(set = 0, binding = 0, r32f) uniform readonly image2D depthIn;  // depth-attachment values (storage read: cheaper than a sampler on lavapipe)
 layout(set = 0, binding = 1, r32f) uniform writeonly image2D distanceOut;

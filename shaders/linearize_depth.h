@@ -5,6 +5,8 @@
 #include "common.h"
 #include "shared_begin.h"
 
+AOR_CONST uint kLinearizeWorkgroupSize = 16u;  // not 8x8: twice as fast on the H100, 20 % on lavapipe (shaders/README.md)
+
 struct LinearizeConstants {
   ivec2 size;
   float projection22;  // P[2][2]

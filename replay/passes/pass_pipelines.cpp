@@ -24,9 +24,12 @@ PassPipelines::~PassPipelines() {
 
 const ComputePipeline& PassPipelines::get(const std::string& key, std::span<const uint32_t> code,
                                           std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
-                                          std::span<const SpecializationValue> specialization) {
+                                          uint32_t workgroupSize, std::span<const SpecializationValue> specialization) {
   auto [it, fresh] = pipelines_.try_emplace(key);
-  if (fresh) it->second = createComputePipeline(vk_, code, bindings, pushConstantSize, specialization);
+  if (fresh) {
+    it->second = createComputePipeline(vk_, code, bindings, pushConstantSize, specialization);
+    it->second.workgroupSize = workgroupSize;
+  }
   return it->second;
 }
 
@@ -34,12 +37,14 @@ VkFormat aoFormat(bool bent) { return bent ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_
 
 const ComputePipeline& PassPipelines::linearizeDepth() {
   VkDescriptorType bindings[] = {kStorage, kStorage};  // depth read as a storage image
-  return get("linearize", spirv::linearize_depth_code(), bindings, sizeof(shader::LinearizeConstants));
+  return get("linearize", spirv::linearize_depth_code(), bindings, sizeof(shader::LinearizeConstants),
+             shader::kLinearizeWorkgroupSize);
 }
 
 const ComputePipeline& PassPipelines::reconstructNormals() {
   VkDescriptorType bindings[] = {kSampled, kStorage};
-  return get("normals", spirv::reconstruct_normals_code(), bindings, sizeof(shader::ReconstructNormalsConstants));
+  return get("normals", spirv::reconstruct_normals_code(), bindings, sizeof(shader::ReconstructNormalsConstants),
+             shader::kWorkgroupSize);
 }
 
 const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin) {
@@ -48,7 +53,7 @@ const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, boo
                                   spec(shader::kGtaoSpecBent, bent), spec(shader::kGtaoSpecViewNormals, viewSpaceNormals),
                                   spec(shader::kGtaoSpecThin, thin)};
   return get(fmt::format("gtao:{}:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals, thin), spirv::gtao_code(), bindings,
-             sizeof(shader::GtaoConstants), values);
+             sizeof(shader::GtaoConstants), shader::kGtaoWorkgroupSize, values);
 }
 
 const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool viewSpaceNormals, bool thin) {
@@ -56,7 +61,7 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
   SpecializationValue values[] = {spec(shader::kGtaoSpecSlices, slices), spec(shader::kGtaoSpecBent, bent),
                                   spec(shader::kGtaoSpecViewNormals, viewSpaceNormals), spec(shader::kGtaoSpecThin, thin)};
   return get(fmt::format("gtao_reference:{}:{}:{}:{}", slices, bent, viewSpaceNormals, thin), spirv::gtao_reference_code(),
-             bindings, sizeof(shader::GtaoConstants), values);
+             bindings, sizeof(shader::GtaoConstants), shader::kWorkgroupSize, values);
 }
 
 // The AO images' format is fixed in each SPIR-V (lavapipe cannot read storage images without a
@@ -64,21 +69,21 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
 const ComputePipeline& PassPipelines::spatialColumns(bool bent) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage};
   auto code = bent ? spirv::spatial_columns_rgba16f_code() : spirv::spatial_columns_r16f_code();
-  return get(fmt::format("spatial_columns:{}", bent), code, bindings, sizeof(shader::SpatialConstants));
+  return get(fmt::format("spatial_columns:{}", bent), code, bindings, sizeof(shader::SpatialConstants), shader::kWorkgroupSize);
 }
 
 const ComputePipeline& PassPipelines::spatial(bool bent) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage, kStorage};
   SpecializationValue values[] = {spec(shader::kSpatialSpecBent, bent)};
   auto code = bent ? spirv::spatial_denoise_rgba16f_code() : spirv::spatial_denoise_r16f_code();
-  return get(fmt::format("spatial:{}", bent), code, bindings, sizeof(shader::SpatialConstants), values);
+  return get(fmt::format("spatial:{}", bent), code, bindings, sizeof(shader::SpatialConstants), shader::kWorkgroupSize, values);
 }
 
 const ComputePipeline& PassPipelines::temporal(bool bent, bool hasHistory) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage, kStorage};
   SpecializationValue values[] = {spec(shader::kTemporalSpecBent, bent), spec(shader::kTemporalSpecHistory, hasHistory)};
   auto code = bent ? spirv::temporal_denoise_rgba16f_code() : spirv::temporal_denoise_r16f_code();
-  return get(fmt::format("temporal:{}:{}", bent, hasHistory), code, bindings, sizeof(shader::TemporalConstants), values);
+  return get(fmt::format("temporal:{}:{}", bent, hasHistory), code, bindings, sizeof(shader::TemporalConstants), shader::kWorkgroupSize, values);
 }
 
 }  // namespace aor

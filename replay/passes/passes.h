@@ -33,9 +33,10 @@ class PassPipelines {
 
  private:
   // The pipeline under `key`, created on first use.
+  // `workgroupSize` is the shader's (its header's constant), for dispatchCompute's group count.
   const ComputePipeline& get(const std::string& key, std::span<const uint32_t> code,
                              std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
-                             std::span<const SpecializationValue> specialization = {});
+                             uint32_t workgroupSize, std::span<const SpecializationValue> specialization = {});
   VulkanContext& vk_;
   std::map<std::string, ComputePipeline> pipelines_;
 };

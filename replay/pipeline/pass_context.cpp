@@ -43,7 +43,8 @@ void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, s
                               writes.data());
   if (pipeline.pushConstantSize)
     vkCmdPushConstants(ctx.cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline.pushConstantSize, pushConstants);
-  uint32_t groups = shader::kWorkgroupSize;
+  uint32_t groups = pipeline.workgroupSize;
+  if (groups == 0) throw std::logic_error("pipeline has no workgroup size");
   vkCmdDispatch(ctx.cmd, (width + groups - 1) / groups, (height + groups - 1) / groups, 1);
 }
 

@@ -26,7 +26,7 @@ namespace aor {
 
 // Binds `pipeline`, pushes the descriptors (binding i = images[i], of the type the pipeline's
 // layout gives it: sampled images through the nearest sampler, storage images as they are) and
-// push constants, and dispatches one 8x8 workgroup per 8x8 pixel tile.
+// push constants, and dispatches one workgroup per tile of the pipeline's workgroup size.
 void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<graph::ResourceId> images,
                      const void* pushConstants, uint32_t width, uint32_t height);
 

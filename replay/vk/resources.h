@@ -51,6 +51,7 @@ struct ComputePipeline {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
   uint32_t pushConstantSize = 0;
+  uint32_t workgroupSize = 0;  // the shader's square workgroup, in pixels a side
   std::vector<VkDescriptorType> bindings;  // type of set 0's binding i
 };
 
