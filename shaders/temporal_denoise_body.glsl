@@ -28,34 +28,28 @@ vec4 historyBilinear(vec2 position) {
   return mix(top, bottom, f.y);
 }
 
+// Branch-free on purpose (lavapipe runs both sides of a branch anyway): every test below only
+// decides, at the end, whether the blend or the current value is stored.
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
   vec4 current = imageLoad(aoCurrent, pixel);
-  float dist = imageLoad(viewDistance, pixel).r;
-  if (!kHasHistory || dist <= 0.0) {  // no history must leave the current value bit for bit
+  if (!kHasHistory) {  // no history must leave the current value bit for bit
     imageStore(aoOut, pixel, current);
     return;
   }
+  float dist = imageLoad(viewDistance, pixel).r;
   vec3 view = viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
   vec3 previousView = (pc.viewToPreviousView * vec4(view, 1.0)).xyz;
   float expected = -previousView.z;
-  bool accepted = expected > 0.0;
-  vec2 previousPixel = vec2(0.0);
-  if (accepted) {
-    vec2 ndc = previousNdc(previousView, pc.previousProjection);
-    vec2 uv = ndc * 0.5 + 0.5;
-    accepted = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));  // layer 1
-    previousPixel = uv * vec2(pc.size) - 0.5;
-  }
-  if (accepted) {  // layer 2: the surface seen there last frame must be this one
-    ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
-    accepted = depthConsistent(expected, imageLoad(previousDistance, nearest).r, kTemporalDepthTolerance);
-  }
-  if (!accepted) {
-    imageStore(aoOut, pixel, current);
-    return;
-  }
+  vec2 ndc = previousNdc(previousView, pc.previousProjection);
+  vec2 uv = ndc * 0.5 + 0.5;
+  bool onScreen = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));  // layer 1, false for NaN
+  vec2 previousPixel = clamp(uv * vec2(pc.size) - 0.5, vec2(-1.0), vec2(pc.size));
+  ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
+  // Layer 2: the surface seen there last frame must be this one.
+  bool accepted = dist > 0.0 && expected > 0.0 && onScreen &&
+                  depthConsistent(expected, imageLoad(previousDistance, nearest).r, kTemporalDepthTolerance);
   vec4 history = historyBilinear(previousPixel);
   // Layer 3: clamp history AO into the current 3x3 neighbourhood (bent normals are not clamped).
   float currentAo = kBent ? current.w : current.r;
@@ -70,12 +64,12 @@ void main() {
     }
   float historyAo = kBent ? history.w : history.r;
   float ao = temporalBlendAo(currentAo, historyAo, lo, hi, pc.blend);
-  if (!kBent) {
-    imageStore(aoOut, pixel, vec4(ao));
-    return;
+  vec4 blended = vec4(ao);
+  if (kBent) {
+    vec3 bent = mix(current.xyz, history.xyz, pc.blend);
+    float len = length(bent);
+    bent = (len > 1e-6 && !isinf(len)) ? bent / len : current.xyz;  // NaN/Inf history: keep the current
+    blended = vec4(bent, ao);
   }
-  vec3 bent = mix(current.xyz, history.xyz, pc.blend);
-  float len = length(bent);
-  bent = (len > 1e-6 && !isinf(len)) ? bent / len : current.xyz;  // NaN/Inf history: keep the current
-  imageStore(aoOut, pixel, vec4(bent, ao));
+  imageStore(aoOut, pixel, accepted ? blended : current);
 }
