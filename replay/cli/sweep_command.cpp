@@ -80,8 +80,8 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
   for (const auto& [name, durations] : samplesByPass(result)) {
     double median = summarize(durations).median;
     row.passMs.emplace_back(name, median);
-    row.totalMs += median;
   }
+  row.totalMs = pipelineTotalMs(row.passMs);
   row.error = errors.summaryJson();
   row.rmse = row.error["rmse"].get<double>();
   row.ssim = row.error["ssim"].get<double>();

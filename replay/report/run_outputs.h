@@ -15,6 +15,11 @@ namespace aor {
 void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& frame);
 // Per pass name, every timed duration over all frames and repetitions, in first-seen order.
 std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
+// The pipeline's cost: the sum of the compute passes' medians. The harness's host copies (upload,
+// read-back) are left out, as in `aoreplay compare`'s total and ao_bench's `pipeline`.
+double pipelineTotalMs(const std::vector<std::pair<std::string, double>>& passMedians);
+// The host copies' medians, summed: what the total leaves out.
+double hostCopiesTotalMs(const std::vector<std::pair<std::string, double>>& passMedians);
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
 // Chrome trace-event format: one track for GPU passes, one for the host's per-frame phases.
 nlohmann::json buildTrace(const ReplayResult& result);

@@ -55,6 +55,16 @@ TEST_F(Cli, RunWritesImagesReportAndTraceWithPerPassTimes) {
     EXPECT_LE(ms["min"].get<double>(), ms["median"].get<double>());
     EXPECT_LE(ms["median"].get<double>(), ms["max"].get<double>());
   }
+  // The total is the pipeline's (compute passes), as compare's and ao_bench's; the host copies
+  // are summed apart.
+  double computeMs = 0, hostCopyMs = 0;
+  for (const auto& [name, p] : passes)
+    (name == "upload" || name == "readback" ? hostCopyMs : computeMs) += p["gpu_ms"]["median"].get<double>();
+  ASSERT_TRUE(passes.count("upload") && passes.count("readback"));
+  EXPECT_GT(hostCopyMs, 0.0);
+  EXPECT_NEAR(report["gpu_ms_total_median"].get<double>(), computeMs, 1e-9 * computeMs);
+  EXPECT_NEAR(report["gpu_ms_host_copies_median"].get<double>(), hostCopyMs, 1e-9 * hostCopyMs);
+  EXPECT_NE(r.output.find(fmt::format("host copies add {:.3f}", hostCopyMs)), std::string::npos) << r.output;
   EXPECT_EQ(report["frames"][0]["history"], "reset");
   EXPECT_EQ(report["frames"][0]["reset_reason"], "first frame");
   EXPECT_EQ(report["frames"][1]["history"], "valid");

@@ -136,6 +136,11 @@ TEST(GroundTruth, SweepErrorFallsAsCostRises) {
   for (size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i]["configuration"], names[i]);
     EXPECT_GT(rows[i]["gpu_ms_total"].get<double>(), 0.0);
+    double computeMs = 0;  // the total is the compute passes', without the upload and read-back copies
+    for (const auto& [pass, ms] : rows[i]["gpu_ms_median"].items())
+      if (pass != "upload" && pass != "readback") computeMs += ms.get<double>();
+    EXPECT_TRUE(rows[i]["gpu_ms_median"].contains("upload"));
+    EXPECT_NEAR(rows[i]["gpu_ms_total"].get<double>(), computeMs, 1e-9 * computeMs);
     EXPECT_EQ(rows[i]["error"]["frames"].get<int>(), 6);  // every frame of the capture
     if (i > 0) {
       // Presets add samples in this order (1x2, 2x2, 3x3, 9x3): each one must be more accurate.
