@@ -28,16 +28,11 @@ vec4 historyBilinear(vec2 position) {
   return mix(top, bottom, f.y);
 }
 
-// Branch-free on purpose (lavapipe runs both sides of a branch anyway): every test below only
-// decides, at the end, whether the blend or the current value is stored.
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
-  vec4 current = imageLoad(aoCurrent, pixel);
-  if (!kHasHistory) {  // no history must leave the current value bit for bit
-    imageStore(aoOut, pixel, current);
-    return;
-  }
+// The blended value of one pixel, or `current` where no history applies: sky, off-screen in the
+// previous frame, or another surface there. It returns early, so that a GPU skips the history
+// and neighbourhood reads of those pixels, and main() stores once (on lavapipe every imageStore
+// in a shader costs a full store, whichever branch it is in).
+vec4 temporalPixel(ivec2 pixel, vec4 current) {
   float dist = imageLoad(viewDistance, pixel).r;
   vec3 view = viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
   vec3 previousView = (pc.viewToPreviousView * vec4(view, 1.0)).xyz;
@@ -45,11 +40,12 @@ void main() {
   vec2 ndc = previousNdc(previousView, pc.previousProjection);
   vec2 uv = ndc * 0.5 + 0.5;
   bool onScreen = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));  // layer 1, false for NaN
-  vec2 previousPixel = clamp(uv * vec2(pc.size) - 0.5, vec2(-1.0), vec2(pc.size));
-  ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
+  if (!(dist > 0.0 && expected > 0.0 && onScreen)) return current;
+  vec2 previousPixel = uv * vec2(pc.size) - 0.5;
   // Layer 2: the surface seen there last frame must be this one.
-  bool accepted = dist > 0.0 && expected > 0.0 && onScreen &&
-                  depthConsistent(expected, imageLoad(previousDistance, nearest).r, kTemporalDepthTolerance);
+  ivec2 nearest = clamp(ivec2(round(previousPixel)), ivec2(0), pc.size - 1);
+  if (!depthConsistent(expected, imageLoad(previousDistance, nearest).r, kTemporalDepthTolerance)) return current;
+
   vec4 history = historyBilinear(previousPixel);
   // Layer 3: clamp history AO into the current 3x3 neighbourhood (bent normals are not clamped).
   float currentAo = kBent ? current.w : current.r;
@@ -64,12 +60,17 @@ void main() {
     }
   float historyAo = kBent ? history.w : history.r;
   float ao = temporalBlendAo(currentAo, historyAo, lo, hi, pc.blend);
-  vec4 blended = vec4(ao);
-  if (kBent) {
-    vec3 bent = mix(current.xyz, history.xyz, pc.blend);
-    float len = length(bent);
-    bent = (len > 1e-6 && !isinf(len)) ? bent / len : current.xyz;  // NaN/Inf history: keep the current
-    blended = vec4(bent, ao);
-  }
-  imageStore(aoOut, pixel, accepted ? blended : current);
+  if (!kBent) return vec4(ao);
+  vec3 bent = mix(current.xyz, history.xyz, pc.blend);
+  float len = length(bent);
+  bent = (len > 1e-6 && !isinf(len)) ? bent / len : current.xyz;  // NaN/Inf history: keep the current
+  return vec4(bent, ao);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
+  vec4 current = imageLoad(aoCurrent, pixel);
+  // No history must leave the current value bit for bit.
+  imageStore(aoOut, pixel, kHasHistory ? temporalPixel(pixel, current) : current);
 }
