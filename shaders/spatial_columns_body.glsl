@@ -7,34 +7,53 @@
 #extension GL_EXT_control_flow_attributes : require
 #include "spatial_denoise.h"
 
-layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+// Each thread sums the vertical legs of kSpatialStrip pixels of one column: they share their
+// taps, so the column's AO and distances are loaded once for the strip (kSpatialStrip + 4 rows)
+// instead of five times per pixel, and each edge weight is computed once.
+layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize / kSpatialStrip) in;
 layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
 layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoIn;  // R16F or RGBA16F (bent.xyz, visibility)
 layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
 layout(set = 0, binding = 2) uniform writeonly image2D columnSum;     // sum of gy * path * ao, AO format
 layout(set = 0, binding = 3) uniform writeonly image2D columnWeight;  // R16F: sum of gy * path (>= 1)
 
+const int kWindow = kSpatialStrip + 2 * kSpatialRadius;  // rows the strip's taps touch
+
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
-  float centreDistance = imageLoad(viewDistance, pixel).r;
-  vec4 sum = imageLoad(aoIn, pixel);
-  float weightSum = 1.0;
-  [[unroll]] for (int direction = -1; direction <= 1; direction += 2) {
-    float path = 1.0;
-    float previous = centreDistance;
-    [[unroll]] for (int k = 1; k <= kSpatialRadius; ++k) {
-      // Distances past the edge repeat the edge (the path keeps walking); AO there weighs 0.
-      int tapY = pixel.y + direction * k;
-      ivec2 tap = ivec2(pixel.x, clamp(tapY, 0, pc.size.y - 1));
-      float current = imageLoad(viewDistance, tap).r;
-      path = spatialPathStep(path, previous, current);
-      previous = current;
-      float weight = tapY == tap.y ? kGaussian1D[k] * path : 0.0;
-      sum += weight * imageLoad(aoIn, tap);
-      weightSum += weight;
+  int x = int(gl_GlobalInvocationID.x);
+  int firstRow = int(gl_WorkGroupID.y * kWorkgroupSize + gl_LocalInvocationID.y * kSpatialStrip);
+  if (x >= pc.size.x || firstRow >= pc.size.y) return;
+  // Rows past the edge repeat the edge's distance (the path keeps walking) and weigh 0.
+  float distance[kWindow];
+  vec4 ao[kWindow];
+  bool inside[kWindow];
+  [[unroll]] for (int i = 0; i < kWindow; ++i) {
+    int row = firstRow - kSpatialRadius + i;
+    ivec2 tap = ivec2(x, clamp(row, 0, pc.size.y - 1));
+    inside[i] = row == tap.y;
+    distance[i] = imageLoad(viewDistance, tap).r;
+    ao[i] = imageLoad(aoIn, tap);
+  }
+  float edge[kWindow - 1];  // edge[i]: between rows i and i + 1 (depthEdgeWeight is symmetric)
+  [[unroll]] for (int i = 0; i < kWindow - 1; ++i) edge[i] = depthEdgeWeight(distance[i], distance[i + 1]);
+  [[unroll]] for (int s = 0; s < kSpatialStrip; ++s) {
+    int centre = s + kSpatialRadius;
+    vec4 sum = ao[centre];
+    float weightSum = 1.0;
+    [[unroll]] for (int direction = -1; direction <= 1; direction += 2) {  // up, then down, as spatial sums
+      float path = 1.0;
+      [[unroll]] for (int k = 1; k <= kSpatialRadius; ++k) {
+        int tap = centre + direction * k;
+        path *= edge[direction < 0 ? tap : tap - 1];
+        float weight = inside[tap] ? kGaussian1D[k] * path : 0.0;
+        sum += weight * ao[tap];
+        weightSum += weight;
+      }
+    }
+    ivec2 pixel = ivec2(x, firstRow + s);
+    if (pixel.y < pc.size.y) {
+      imageStore(columnSum, pixel, sum);
+      imageStore(columnWeight, pixel, vec4(weightSum));
     }
   }
-  imageStore(columnSum, pixel, sum);
-  imageStore(columnWeight, pixel, vec4(weightSum));
 }

@@ -19,6 +19,7 @@
 AOR_CONST int kSpatialSpecBent = 0;
 AOR_CONST int kSpatialRadius = 2;          // 5x5
 AOR_CONST float kSpatialSigma = 1.5f;
+AOR_CONST int kSpatialStrip = 4;          // pixels per spatial_columns thread (a column strip; divides kWorkgroupSize)
 
 struct SpatialConstants {
   ivec2 size;
