@@ -185,9 +185,10 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
   vec2 omega = vec2(cos(phi), sin(phi));  // screen direction, pixels, y down
   vec2 sliceRotation = vec2(cos(kPi / float(kSlices)), sin(kPi / float(kSlices)));
   // The same loop twice, so that only small ones are unrolled: unrolled, lavapipe runs 3x3 in
-  // 9.1 ms instead of 12.5 at 640x360, but its compile time grows with the unrolled size (0.4 s
-  // at 9x3, 2.3 s at 16x8, 20 s at 32x16; bench/RESULTS.md). The condition is a specialisation
-  // constant, so the other loop is never compiled.
+  // 9.1 ms instead of 12.5 at 640x360, but it compiles a shader on its first dispatch, and that
+  // grows with the unrolled size (first dispatch at 320x180 with no shader cache: 0.39 s at 9x3
+  // against 0.08 rolled, 2.3 s at 16x8, 13-21 s at 32x12 to 32x16; bench/RESULTS.md). The
+  // condition is a specialisation constant, so the other loop is never compiled.
   if (kSlices * kSteps <= kGtaoMaxUnrolledSliceSteps) {
     AOR_UNROLL for (int sliceIndex = 0; sliceIndex < kSlices; ++sliceIndex) {
       gtaoSlice(pixel, c, omega, noise.y, visibility, unoccluded, bentSum);
