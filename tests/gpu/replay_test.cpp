@@ -93,10 +93,16 @@ TEST(Replay, DisablingTheResetAtACutLeaksHistory) {
 }
 
 TEST(Replay, GtaoPassMatchesItsCpuMirror) {
-  for (bool bent : {true, false}) {
+  struct Case { bool bent; int slices, steps; };
+  // 6x8 is past kGtaoMaxUnrolledSliceSteps: the shader's rolled slice loop, the presets' unrolled one.
+  static_assert(6 * 8 > shader::kGtaoMaxUnrolledSliceSteps && 3 * 3 <= shader::kGtaoMaxUnrolledSliceSteps);
+  for (Case c : {Case{true, 3, 3}, Case{false, 3, 3}, Case{true, 6, 8}}) {
+    bool bent = c.bent;
     auto capturePath = generatedCapture("boxes", "orbit", 80, 45, 2);
     AoSettings settings = gtaoOnly();
     settings.bent = bent ? 1 : 0;
+    settings.slices = c.slices;
+    settings.steps = c.steps;
     settings.thin = 0.5f;
     auto gpu = replay(capturePath, settings, 1, 2);
     Capture capture = loadCapture(capturePath);
@@ -111,7 +117,7 @@ TEST(Replay, GtaoPassMatchesItsCpuMirror) {
       if (e > maxError) { maxError = e; worst = i; }
       minVisibility = std::min(minVisibility, double(cpu.visibility[i]));
     }
-    EXPECT_LE(maxError, 1e-3) << "bent=" << bent << " worst pixel " << worst;
+    EXPECT_LE(maxError, 1e-3) << "bent=" << bent << " " << c.slices << "x" << c.steps << " worst pixel " << worst;
     EXPECT_LT(minVisibility, 0.7);  // the boxes occlude the floor: a constant output fails
     if (bent) {
       double maxBentError = 0;
