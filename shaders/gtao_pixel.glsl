@@ -5,14 +5,12 @@
 //   vec3  gtaoLoadViewNormal(ivec2 pixel)    view-space normal as stored: any length, zero, NaN or Inf
 // Returns visibility in [0,1] and the bent normal (view space, unit) through `bentNormal`.
 
-vec3 gtaoViewPosition(ivec2 pixel, float dist) {
-  return viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
-}
-
 // What every sample of a pixel shares: its view-space position, view vector and normal, and the
 // sampling constants derived from the push constants once per pixel rather than once per sample.
 struct GtaoCentre {
+  ivec2 pixel;
   vec3 position;
+  vec2 viewRay;         // view-space xy of the pixel's centre at distance 1
   vec3 viewDir;
   vec3 normal;
   float screenRadius;   // pixels
@@ -35,7 +33,10 @@ float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLe
   float lowCos = gtaoTangentHorizonCos(sinN, side);
   ivec2 fetched = clamp(samplePixel, ivec2(0), pc.size - 1);
   float dist = gtaoLoadDistance(fetched);
-  vec3 delta = gtaoViewPosition(fetched, dist) - c.position;
+  // The sample's view position from the centre's ray, one pixel step per pixel of offset (the
+  // projection is affine in the pixel coordinate); an off-screen sample is not used.
+  vec2 ray = c.viewRay + vec2(samplePixel - c.pixel) * pc.viewPerPixel;
+  vec3 delta = vec3(dist * ray, -dist) - c.position;
   float len2 = dot(delta, delta);
   float invLen = inversesqrt(len2);
   // Thin-occluder heuristic (XeGTAO): stretching the depth component fades samples behind the
@@ -120,7 +121,9 @@ void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosN
 bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(GtaoCentre) c) {
   float dist = gtaoLoadDistance(pixel);
   if (dist <= 0.0f) return false;
-  c.position = gtaoViewPosition(pixel, dist);
+  c.pixel = pixel;
+  c.viewRay = pixelToNdc(vec2(pixel), pc.invSize) * pc.ndcToViewMul + pc.ndcToViewAdd;
+  c.position = vec3(dist * c.viewRay, -dist);
   c.viewDir = normalize(-c.position);
   vec3 normal = gtaoLoadViewNormal(pixel);
   float len2 = dot(normal, normal);
