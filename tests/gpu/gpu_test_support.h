@@ -16,8 +16,8 @@ namespace aor::test {
 // Lavapipe context with validation + synchronization validation, created on first use.
 VulkanContext& validatedContext();
 
-std::filesystem::path scratchDir(const std::string& name);
-std::string readText(const std::filesystem::path& file);  // the whole file, bytes as they are  // fresh folder under the build tree, private to the running test
+std::filesystem::path scratchDir(const std::string& name);  // fresh folder under the build tree, private to the running test
+std::string readText(const std::filesystem::path& file);    // the whole file, bytes as they are
 
 // Generated with the project's generator once per test program (cached by name).
 std::filesystem::path generatedCapture(const std::string& scene, const std::string& path, int width, int height,
