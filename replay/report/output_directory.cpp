@@ -14,6 +14,16 @@ namespace aor {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Where a result for `path` is written before it is renamed into place: a hidden sibling, named
+// after this process so two runs never share one.
+fs::path stagingSibling(const fs::path& path) {
+  return path.parent_path() / fmt::format(".{}.tmp-{}", path.filename().string(), getpid());
+}
+
+}  // namespace
+
 OutputDirectory::OutputDirectory(fs::path finalPath, const std::string& marker)
     : final_(fs::absolute(std::move(finalPath)).lexically_normal()) {
   if (final_.filename().empty()) final_ = final_.parent_path();
@@ -26,7 +36,7 @@ OutputDirectory::OutputDirectory(fs::path finalPath, const std::string& marker)
     if (!fs::exists(final_ / marker) && !fs::is_empty(final_, ec))
       throw fail(fmt::format("exists, is not empty and holds no {} (not an earlier result); not replacing it", marker));
   }
-  staging_ = final_.parent_path() / fmt::format(".{}.tmp-{}", final_.filename().string(), getpid());
+  staging_ = stagingSibling(final_);
   fs::remove_all(staging_, ec);
   fs::create_directories(staging_, ec);
   if (ec) throw fail(fmt::format("cannot create {}: {}", staging_.string(), ec.message()));
@@ -52,7 +62,7 @@ void writeFileAtomically(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw fail(fmt::format("cannot create the folder {}: {}", path.parent_path().string(), ec.message()));
   }
-  fs::path tmp = path.parent_path() / fmt::format(".{}.tmp-{}", path.filename().string(), getpid());
+  fs::path tmp = stagingSibling(path);
   try {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw fail(fmt::format("cannot create {}: {}", tmp.string(), std::strerror(errno)));
