@@ -219,8 +219,10 @@ void poisonAoHistory(const AoFrameInputs& inputs, GraphResources& resources, Gra
 
 // Set-up, outside the replay's wall time as device creation is: the first frame's graph is recorded
 // once and not submitted, which creates the pipelines of its live passes and its images, and the
-// temporal pass's with-history variant, which every later frame uses, is created directly. Shader
-// compilation (about 17 ms on lavapipe) then never lands in a frame's time.
+// temporal pass's with-history variant, which every later frame uses, is created directly. Pipeline
+// creation (about 17 ms on lavapipe) then never lands in a frame's time; lavapipe's compile to
+// machine code happens at a shader's first dispatch, so there that part still lands in the first
+// frame (README, setup_ms).
 void prepareFirstFrame(const AoFrameInputs& inputs, PassPipelines& pipelines, GraphResources& resources,
                        GraphExecutor& executor, const AoFrameBuffers& buffers) {
   compileAndRecord(buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers).graph, resources, executor);
