@@ -8,7 +8,6 @@
 // What every sample of a pixel shares: its view-space position, view vector and normal, and the
 // sampling constants derived from the push constants once per pixel rather than once per sample.
 struct GtaoCentre {
-  ivec2 pixel;
   vec3 position;
   vec2 viewRay;         // view-space xy of the pixel's centre at distance 1
   vec3 viewDir;
@@ -28,14 +27,15 @@ struct GtaoCentre {
 // directly makes flat planes occlude themselves (0.92 at 30 degrees), this makes planes exact.
 // Branch-free on purpose: a CPU device (lavapipe) runs both sides of every branch anyway, and the
 // final select drops whatever an unusable sample computed (NaN included).
-float gtaoSampleHorizonCos(ivec2 samplePixel, GtaoCentre c, float invProjectedLength, float cosN, float sinN,
-                           float side) {
+float gtaoSampleHorizonCos(ivec2 samplePixel, vec2 rayOffset, GtaoCentre c, float invProjectedLength, float cosN,
+                           float sinN, float side) {
   float lowCos = gtaoTangentHorizonCos(sinN, side);
   ivec2 fetched = clamp(samplePixel, ivec2(0), pc.size - 1);
   float dist = gtaoLoadDistance(fetched);
   // The sample's view position from the centre's ray, one pixel step per pixel of offset (the
-  // projection is affine in the pixel coordinate); an off-screen sample is not used.
-  vec2 ray = c.viewRay + vec2(samplePixel - c.pixel) * pc.viewPerPixel;
+  // projection is affine in the pixel coordinate; rayOffset is the offset times viewPerPixel,
+  // signed by side); an off-screen sample is not used.
+  vec2 ray = c.viewRay + rayOffset;
   vec3 delta = vec3(dist * ray, -dist) - c.position;
   float len2 = dot(delta, delta);
   float invLen = inversesqrt(len2);
@@ -89,6 +89,18 @@ bool gtaoSliceFrame(vec2 omega, vec3 viewDir, vec3 normal, AOR_OUT(GtaoSlice) sl
   return true;
 }
 
+// The samples at +offset and -offset pixels, raising each side's horizon.
+void gtaoSampleBothSides(ivec2 pixel, ivec2 offset, GtaoCentre c, GtaoSlice slice, AOR_INOUT(float) horizonCosPos,
+                         AOR_INOUT(float) horizonCosNeg) {
+  // Converted once for both sides: int-to-float conversion is a quarter-rate instruction on NVIDIA
+  // GPUs (H100 gtao -2 %, bench/RESULTS.md).
+  vec2 rayOffset = vec2(offset) * pc.viewPerPixel;
+  horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, rayOffset, c, slice.invProjectedLength,
+                                                          slice.cosN, slice.sinN, 1.0f));
+  horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, -rayOffset, c, slice.invProjectedLength,
+                                                          slice.cosN, slice.sinN, -1.0f));
+}
+
 // Integrates one slice whose horizon cosines were found, into the pixel's running sums. The bent
 // normal is summed in the frame where the view vector is +Z: the rotation to view space is linear,
 // so gtaoResolve applies it once per pixel instead of once per slice.
@@ -121,7 +133,6 @@ void gtaoAccumulateSlice(GtaoSlice slice, float horizonCosPos, float horizonCosN
 bool gtaoPixelCentre(ivec2 pixel, AOR_OUT(GtaoCentre) c) {
   float dist = gtaoLoadDistance(pixel);
   if (dist <= 0.0f) return false;
-  c.pixel = pixel;
   c.viewRay = pixelToNdc(vec2(pixel), pc.invSize) * pc.ndcToViewMul + pc.ndcToViewAdd;
   c.position = vec3(dist * c.viewRay, -dist);
   c.viewDir = normalize(-c.position);
@@ -161,11 +172,7 @@ void gtaoSlice(ivec2 pixel, GtaoCentre c, vec2 omega, float stepNoise, AOR_INOUT
   AOR_UNROLL for (int step = 0; step < kSteps; ++step) {
     float t = (float(step) + stepNoise) / float(kSteps);
     float offsetPixels = t * t * c.screenRadius + kMinSampleOffsetPixels;  // quadratic distribution
-    ivec2 offset = ivec2(round(omega * offsetPixels));
-    horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, c, slice.invProjectedLength,
-                                                            slice.cosN, slice.sinN, 1.0f));
-    horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
-                                                            slice.cosN, slice.sinN, -1.0f));
+    gtaoSampleBothSides(pixel, ivec2(round(omega * offsetPixels)), c, slice, horizonCosPos, horizonCosNeg);
   }
   gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, visibility, unoccluded, bentSum);
 }

@@ -51,11 +51,7 @@ float referencePixel(ivec2 pixel, out vec3 bentNormal) {
     vec2 step = omega / max(abs(omega.x), abs(omega.y));
     int count = int(c.screenRadius / length(step)) + 1;
     for (int k = 1; k <= count; ++k) {
-      ivec2 offset = ivec2(round(step * float(k)));
-      horizonCosPos = max(horizonCosPos, gtaoSampleHorizonCos(pixel + offset, c, slice.invProjectedLength,
-                                                              slice.cosN, slice.sinN, 1.0));
-      horizonCosNeg = max(horizonCosNeg, gtaoSampleHorizonCos(pixel - offset, c, slice.invProjectedLength,
-                                                              slice.cosN, slice.sinN, -1.0));
+      gtaoSampleBothSides(pixel, ivec2(round(step * float(k))), c, slice, horizonCosPos, horizonCosNeg);
     }
     gtaoAccumulateSlice(slice, horizonCosPos, horizonCosNeg, visibility, unoccluded, bentSum);
   }
