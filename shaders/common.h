@@ -17,6 +17,12 @@ AOR_FUNC vec3 viewPositionFromNdc(vec2 ndc, float dist, vec2 ndcToViewMul, vec2 
   return vec3(dist * (ndc.x * ndcToViewMul.x + ndcToViewAdd.x), dist * (ndc.y * ndcToViewMul.y + ndcToViewAdd.y), -dist);
 }
 
+#ifdef __cplusplus
+// The two terms above, from P, for every pass constant that carries them.
+inline vec2 ndcToViewMulOf(const mat4& p) { return {1.0f / p[0][0], 1.0f / p[1][1]}; }
+inline vec2 ndcToViewAddOf(const mat4& p) { return {p[2][0] / p[0][0], p[2][1] / p[1][1]}; }
+#endif
+
 // Pixel (x, y), row 0 at the top, samples NDC ((2x+1)/W - 1, (2y+1)/H - 1) (capture format v1).
 AOR_FUNC vec2 pixelToNdc(vec2 pixel, vec2 invSize) {
   return vec2((2.0f * pixel.x + 1.0f) * invSize.x - 1.0f, (2.0f * pixel.y + 1.0f) * invSize.y - 1.0f);

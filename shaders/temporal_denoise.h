@@ -28,8 +28,8 @@ inline TemporalConstants temporalReprojection(const mat4& view, const mat4& proj
   c.viewToPreviousView = previousView * inverse(view);
   c.previousProjection = {previousProjection[0][0], previousProjection[1][1], previousProjection[2][0],
                           previousProjection[2][1]};
-  c.ndcToViewMul = {1.0f / projection[0][0], 1.0f / projection[1][1]};
-  c.ndcToViewAdd = {projection[2][0] / projection[0][0], projection[2][1] / projection[1][1]};
+  c.ndcToViewMul = ndcToViewMulOf(projection);
+  c.ndcToViewAdd = ndcToViewAddOf(projection);
   c.invSize = {1.0f / float(width), 1.0f / float(height)};
   c.size = {width, height};
   return c;
