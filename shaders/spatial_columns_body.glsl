@@ -10,7 +10,7 @@
 // Each thread sums the vertical legs of kSpatialStrip pixels of one column: they share their
 // taps, so the column's AO and distances are loaded once for the strip (kSpatialStrip + 4 rows)
 // instead of five times per pixel, and each edge weight is computed once.
-layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize / kSpatialStrip) in;
+layout(local_size_x = kSpatialColumnsWorkgroupSize, local_size_y = kSpatialColumnsWorkgroupSize / kSpatialStrip) in;
 layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
 layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoIn;  // R16F or RGBA16F (bent.xyz, visibility)
 layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
@@ -21,7 +21,7 @@ const int kWindow = kSpatialStrip + 2 * kSpatialRadius;  // rows the strip's tap
 
 void main() {
   int x = int(gl_GlobalInvocationID.x);
-  int firstRow = int(gl_WorkGroupID.y * kWorkgroupSize + gl_LocalInvocationID.y * kSpatialStrip);
+  int firstRow = int(gl_WorkGroupID.y * kSpatialColumnsWorkgroupSize + gl_LocalInvocationID.y * kSpatialStrip);
   if (x >= pc.size.x || firstRow >= pc.size.y) return;
   // Rows past the edge repeat the edge's distance (the path keeps walking) and weigh 0.
   float distance[kWindow];

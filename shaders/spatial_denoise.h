@@ -19,7 +19,10 @@
 AOR_CONST int kSpatialSpecBent = 0;
 AOR_CONST int kSpatialRadius = 2;          // 5x5
 AOR_CONST float kSpatialSigma = 1.5f;
-AOR_CONST int kSpatialStrip = 4;          // pixels per spatial_columns thread (a column strip; divides kWorkgroupSize)
+AOR_CONST int kSpatialStrip = 4;          // pixels per spatial_columns thread (a column strip)
+// Pixels per side of a spatial_columns workgroup (a multiple of the strip): 16x4 threads fill two
+// warps of 32 where 8x8 pixels would leave half a warp idle (shaders/README.md).
+AOR_CONST uint kSpatialColumnsWorkgroupSize = 16u;
 
 struct SpatialConstants {
   ivec2 size;

@@ -69,7 +69,8 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
 const ComputePipeline& PassPipelines::spatialColumns(bool bent) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage};
   auto code = bent ? spirv::spatial_columns_rgba16f_code() : spirv::spatial_columns_r16f_code();
-  return get(fmt::format("spatial_columns:{}", bent), code, bindings, sizeof(shader::SpatialConstants), shader::kWorkgroupSize);
+  return get(fmt::format("spatial_columns:{}", bent), code, bindings, sizeof(shader::SpatialConstants),
+             shader::kSpatialColumnsWorkgroupSize);
 }
 
 const ComputePipeline& PassPipelines::spatial(bool bent) {
