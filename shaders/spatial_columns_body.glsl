@@ -15,7 +15,9 @@ layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
 layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoIn;  // R16F or RGBA16F (bent.xyz, visibility)
 layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
 layout(set = 0, binding = 2) uniform writeonly image2D columnSum;     // sum of gy * path * ao, AO format
-layout(set = 0, binding = 3) uniform writeonly image2D columnWeight;  // R16F: sum of gy * path (>= 1)
+// RG16F: x = sum of gy * path (>= 1; 0 marks a sky pixel), y = the edge weight to the pixel on the
+// right (0 at the right border), so spatial needs no distance reads.
+layout(set = 0, binding = 3) uniform writeonly image2D columnWeightAndEdge;
 
 const int kWindow = kSpatialStrip + 2 * kSpatialRadius;  // rows the strip's taps touch
 
@@ -34,6 +36,7 @@ void main() {
     distance[i] = imageLoad(viewDistance, tap).r;
     ao[i] = imageLoad(aoIn, tap);
   }
+  int right = min(x + 1, pc.size.x - 1);
   float edge[kWindow - 1];  // edge[i]: between rows i and i + 1 (depthEdgeWeight is symmetric)
   [[unroll]] for (int i = 0; i < kWindow - 1; ++i) edge[i] = depthEdgeWeight(distance[i], distance[i + 1]);
   [[unroll]] for (int s = 0; s < kSpatialStrip; ++s) {
@@ -52,8 +55,9 @@ void main() {
     }
     ivec2 pixel = ivec2(x, firstRow + s);
     if (pixel.y < pc.size.y) {
+      float rightEdge = right > x ? depthEdgeWeight(distance[centre], imageLoad(viewDistance, ivec2(right, pixel.y)).r) : 0.0;
       imageStore(columnSum, pixel, sum);
-      imageStore(columnWeight, pixel, vec4(weightSum));
+      imageStore(columnWeightAndEdge, pixel, vec4(distance[centre] > 0.0 ? weightSum : 0.0, rightEdge, 0.0, 0.0));
     }
   }
 }

@@ -7,8 +7,9 @@
 // gx(dx) * gy(dy) * rowPath(dx) * columnPath(dx, dy), the Gaussian is separable, and the vertical
 // leg of the path starts on the centre row at the tap's column, so it depends on that column pixel
 // alone. spatial_columns sums each pixel's vertical leg once (5 taps: sum of gy * columnPath * ao
-// and of gy * columnPath); spatial combines five of those along the row: 10 taps per pixel instead
-// of 25, the seed's weights exactly (up to float rounding and the half-float column sums).
+// and of gy * columnPath) and stores the edge weight to its right neighbour; spatial combines five
+// of those along the row: 10 image reads per pixel instead of 25 taps and their distances, the
+// seed's weights exactly (up to float rounding and the half-float column sums and edge weights).
 // Deviation from the seed's single pass, on purpose: a shared-memory tile would do the same in one
 // dispatch, but on a CPU device (lavapipe) every shared-memory access with a per-thread index is a
 // scalar load per lane behind a branch; image reads are vector gathers. Two image-only dispatches
@@ -40,12 +41,6 @@ AOR_FUNC float spatialGaussian(int dx, int dy) {
 const float kGaussian1D[kSpatialRadius + 1] = float[](1.0, exp(-1.0 / (2.0 * kSpatialSigma * kSpatialSigma)),
                                                       exp(-4.0 / (2.0 * kSpatialSigma * kSpatialSigma)));
 #endif
-
-// One leg of the path (from the centre outward, k = 1..radius along one axis): the running path
-// weight after the edge between the previous and the current tap's distance.
-AOR_FUNC float spatialPathStep(float path, float previousDistance, float currentDistance) {
-  return path * depthEdgeWeight(previousDistance, currentDistance);
-}
 
 #include "shared_end.h"
 #endif

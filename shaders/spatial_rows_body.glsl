@@ -10,36 +10,39 @@ layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kSpatialSpecBent) const bool kBent = true;
 layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
 layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoIn;   // the unblurred AO
-layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
-layout(set = 0, binding = 2, AOR_AO_FORMAT) uniform readonly image2D columnSum;
-layout(set = 0, binding = 3, r16f) uniform readonly image2D columnWeight;
-layout(set = 0, binding = 4) uniform writeonly image2D aoOut;
+layout(set = 0, binding = 1, AOR_AO_FORMAT) uniform readonly image2D columnSum;
+layout(set = 0, binding = 2, rg16f) uniform readonly image2D columnWeightAndEdge;  // see spatial_columns_body.glsl
+layout(set = 0, binding = 3) uniform writeonly image2D aoOut;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
-  vec4 centreValue = imageLoad(aoIn, pixel);
-  float centreDistance = imageLoad(viewDistance, pixel).r;
   vec4 sum = imageLoad(columnSum, pixel);
-  float weightSum = imageLoad(columnWeight, pixel).r;
+  vec2 centre = imageLoad(columnWeightAndEdge, pixel).xy;
+  float weightSum = centre.x;
   [[unroll]] for (int direction = -1; direction <= 1; direction += 2) {
     float path = 1.0;
-    float previous = centreDistance;
+    float rightEdge = centre.y;  // the edge leaving the previous tap to the right
     [[unroll]] for (int k = 1; k <= kSpatialRadius; ++k) {
       int tapX = pixel.x + direction * k;
       ivec2 tap = ivec2(clamp(tapX, 0, pc.size.x - 1), pixel.y);
-      float current = imageLoad(viewDistance, tap).r;
-      path = spatialPathStep(path, previous, current);
-      previous = current;
+      vec2 tapWeightAndEdge = imageLoad(columnWeightAndEdge, tap).xy;
+      // Walking right, the edge crossed is the previous tap's right edge; walking left, the tap's own.
+      path *= direction > 0 ? rightEdge : tapWeightAndEdge.y;
+      rightEdge = tapWeightAndEdge.y;
       float weight = tapX == tap.x ? kGaussian1D[k] * path : 0.0;
       sum += weight * imageLoad(columnSum, tap);
-      weightSum += weight * imageLoad(columnWeight, tap).r;
+      weightSum += weight * tapWeightAndEdge.x;
     }
   }
-  vec4 result = sum / weightSum;  // weightSum >= 1: the centre tap always counts
-  if (kBent) {
-    float len = length(result.xyz);
-    result.xyz = len > 1e-6 ? result.xyz / len : centreValue.xyz;
+  vec4 result = sum / weightSum;  // weightSum >= 1 unless the pixel is sky (0)
+  bool sky = centre.x == 0.0;
+  float len = kBent ? length(result.xyz) : 1.0;
+  if (sky || !(len > 1e-6)) {  // sky: nothing to blur; a degenerate bent sum: the unblurred normal
+    vec4 unblurred = imageLoad(aoIn, pixel);
+    result = sky ? unblurred : vec4(unblurred.xyz, result.w);
+  } else if (kBent) {
+    result.xyz /= len;
   }
-  imageStore(aoOut, pixel, centreDistance <= 0.0 ? centreValue : result);  // sky: nothing to blur
+  imageStore(aoOut, pixel, result);
 }

@@ -13,7 +13,7 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
   constants.size = {camera.width, camera.height};
   uint32_t w = uint32_t(camera.width), h = uint32_t(camera.height);
   auto columnSum = graph.createImage("ao_column_sum", {w, h, aoFormat(bent)});
-  auto columnWeight = graph.createImage("ao_column_weight", {w, h, VK_FORMAT_R16_SFLOAT});
+  auto columnWeightAndEdge = graph.createImage("ao_column_weight_edge", {w, h, VK_FORMAT_R16G16_SFLOAT});
   auto blurred = graph.createImage("ao_blurred", {w, h, aoFormat(bent)});
   // The 5x5 blur in two dispatches, vertical legs then rows (why: shaders/spatial_denoise.h).
   graph.addPass(
@@ -22,25 +22,24 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
         b.read(ao, graph::Access::StorageRead);
         b.read(distance, graph::Access::StorageRead);
         b.write(columnSum);
-        b.write(columnWeight);
+        b.write(columnWeightAndEdge);
       },
-      [&pipelines, bent, constants, ao, distance, columnSum, columnWeight](graph::PassContext& ctx) {
+      [&pipelines, bent, constants, ao, distance, columnSum, columnWeightAndEdge](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.spatialColumns(bent),
-                        {ao, distance, columnSum, columnWeight}, &constants,
+                        {ao, distance, columnSum, columnWeightAndEdge}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   graph.addPass(
       "spatial",
       [&](graph::PassBuilder& b) {
         b.read(ao, graph::Access::StorageRead);
-        b.read(distance, graph::Access::StorageRead);
         b.read(columnSum, graph::Access::StorageRead);
-        b.read(columnWeight, graph::Access::StorageRead);
+        b.read(columnWeightAndEdge, graph::Access::StorageRead);
         b.write(blurred);
       },
-      [&pipelines, bent, constants, ao, distance, columnSum, columnWeight, blurred](graph::PassContext& ctx) {
+      [&pipelines, bent, constants, ao, columnSum, columnWeightAndEdge, blurred](graph::PassContext& ctx) {
         dispatchCompute(ctx, pipelines.spatial(bent),
-                        {ao, distance, columnSum, columnWeight, blurred},
+                        {ao, columnSum, columnWeightAndEdge, blurred},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return blurred;

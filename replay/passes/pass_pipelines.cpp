@@ -74,7 +74,7 @@ const ComputePipeline& PassPipelines::spatialColumns(bool bent) {
 }
 
 const ComputePipeline& PassPipelines::spatial(bool bent) {
-  VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage, kStorage};
+  VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage};
   SpecializationValue values[] = {spec(shader::kSpatialSpecBent, bent)};
   auto code = bent ? spirv::spatial_denoise_rgba16f_code() : spirv::spatial_denoise_r16f_code();
   return get(fmt::format("spatial:{}", bent), code, bindings, sizeof(shader::SpatialConstants), shader::kWorkgroupSize, values);

@@ -155,7 +155,7 @@ TEST(AoGraph, SpatialPassOnlyWithSpatialOne) {
   EXPECT_FALSE(b.runs("spatial_columns"));
   EXPECT_FALSE(b.allocated("ao_blurred"));
   EXPECT_FALSE(b.allocated("ao_column_sum"));
-  EXPECT_FALSE(b.allocated("ao_column_weight"));
+  EXPECT_FALSE(b.allocated("ao_column_weight_edge"));
   EXPECT_TRUE(b.runs("temporal"));
 }
 
