@@ -197,7 +197,7 @@ TEST(Replay, SpatialPassIsTheSeedsPathWeighted5x5Blur) {
       maxChange = std::max(maxChange, std::abs(double(noisy.frames[0].visibility[i]) - double(gpu.visibility[i])));
     }
   std::printf("spatial vs direct 25-tap: max %.2e, bent %.2e, change %.3f\n", maxError, maxBentError, maxChange);
-  // Half-float column sums and output: about 1e-3 at most.
+  // Half-float column sums, edge weights and output: about 1e-3 at most.
   EXPECT_LE(maxError, 2e-3);
   EXPECT_LE(maxBentError, 2e-3);
   EXPECT_GT(maxChange, 0.02) << "the blur must change the noisy AO, or this test proves nothing";
