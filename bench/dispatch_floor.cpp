@@ -1,0 +1,255 @@
+// dispatch_floor: what one compute dispatch costs on a device before it does any work, and what
+// its one image store costs per texel format, from Vulkan timestamp queries (Google Benchmark
+// manual time, median over --reps repetitions).
+//
+// Why it exists: the AO pipeline is five dispatches where the naive baseline is one, and on a CPU
+// device (lavapipe) each dispatch pays for running its invocations and storing its texels whatever
+// the pass computes. These figures say how much of a pass's time that is (bench/RESULTS.md).
+//
+// Own flags (before Google Benchmark's): --size=WxH (default 640x360)  --reps=N (default 20)
+// --device=SEL  --validate (Khronos validation; any message exits 1). Benchmarks: floor/nothing, floor/store_<format> for R16F, RG16F, R32F, RGBA16F
+// and RGBA32F, floor/copy_rgba16f (one RGBA16F load and store); each name ends with the size.
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "capture/input_error.h"
+#include "options/number.h"
+#include "options/size.h"
+#include "shaders/dispatch_floor.h"
+#include "vk/context.h"
+#include "vk/resources.h"
+#include "vk/vk_check.h"
+
+namespace aor::spirv {
+extern const uint32_t dispatch_floor[];
+extern const size_t dispatch_floor_words;
+}  // namespace aor::spirv
+
+namespace aor::bench {
+namespace {
+
+using shader::FloorConstants;
+
+struct Options {
+  std::pair<int, int> size{640, 360};
+  int reps = 20;
+  std::string device;
+  bool validate = false;
+};
+
+struct Variant {
+  const char* name;
+  int mode;
+  VkFormat target;
+};
+
+constexpr Variant kVariants[] = {
+    {"nothing", shader::kFloorModeNothing, VK_FORMAT_R16G16B16A16_SFLOAT},
+    {"store_r16f", shader::kFloorModeStore, VK_FORMAT_R16_SFLOAT},
+    {"store_rg16f", shader::kFloorModeStore, VK_FORMAT_R16G16_SFLOAT},
+    {"store_r32f", shader::kFloorModeStore, VK_FORMAT_R32_SFLOAT},
+    {"store_rgba16f", shader::kFloorModeStore, VK_FORMAT_R16G16B16A16_SFLOAT},
+    {"store_rgba32f", shader::kFloorModeStore, VK_FORMAT_R32G32B32A32_SFLOAT},
+    {"copy_rgba16f", shader::kFloorModeCopy, VK_FORMAT_R16G16B16A16_SFLOAT},
+};
+
+// One command buffer, one fence and two timestamps, reused for every timed dispatch.
+struct Rig {
+  VulkanContext& vk;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  VkQueryPool queries = VK_NULL_HANDLE;
+
+  explicit Rig(VulkanContext& context) : vk(context) {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = vk.commandPool;
+    alloc.commandBufferCount = 1;
+    VK_CHECK(vkAllocateCommandBuffers(vk.device, &alloc, &cmd));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(vk.device, &fenceInfo, nullptr, &fence));
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = 2;
+    VK_CHECK(vkCreateQueryPool(vk.device, &queryInfo, nullptr, &queries));
+  }
+  ~Rig() {
+    vkDestroyQueryPool(vk.device, queries, nullptr);
+    vkDestroyFence(vk.device, fence, nullptr);
+    vkFreeCommandBuffers(vk.device, vk.commandPool, 1, &cmd);
+  }
+
+  // Records `record` between two timestamps, runs it and returns the GPU time in milliseconds.
+  template <class Record>
+  double timed(Record&& record) {
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    vkCmdResetQueryPool(cmd, queries, 0, 2);
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 0);
+    record(cmd);
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(vk.queue, 1, &submit, fence));
+    VK_CHECK(vkWaitForFences(vk.device, 1, &fence, VK_TRUE, UINT64_MAX));
+    VK_CHECK(vkResetFences(vk.device, 1, &fence));
+    uint64_t ticks[2];
+    VK_CHECK(vkGetQueryPoolResults(vk.device, queries, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    uint64_t mask = vk.timestampValidBits >= 64 ? ~0ull : (1ull << vk.timestampValidBits) - 1;
+    return double((ticks[1] - ticks[0]) & mask) * vk.timestampPeriodNs * 1e-6;
+  }
+};
+
+void toGeneralLayout(VkCommandBuffer cmd, std::initializer_list<VkImage> images) {
+  std::vector<VkImageMemoryBarrier2> barriers;
+  for (VkImage image : images) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    barriers.push_back(b);
+  }
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = uint32_t(barriers.size());
+  dependency.pImageMemoryBarriers = barriers.data();
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline, const GpuImage& source,
+                    const GpuImage& target) {
+  VkDescriptorImageInfo infos[2] = {{VK_NULL_HANDLE, source.view, VK_IMAGE_LAYOUT_GENERAL},
+                                    {VK_NULL_HANDLE, target.view, VK_IMAGE_LAYOUT_GENERAL}};
+  VkWriteDescriptorSet writes[2];
+  for (uint32_t i = 0; i < 2; ++i) {
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    writes[i].pImageInfo = &infos[i];
+  }
+  FloorConstants constants{{int(target.width), int(target.height)}};
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+  vk.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 2, writes);
+  vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants, &constants);
+  uint32_t group = shader::kFloorWorkgroupSize;
+  vkCmdDispatch(cmd, (target.width + group - 1) / group, (target.height + group - 1) / group, 1);
+}
+
+// The images and pipeline of one variant, made before any benchmark runs; FloorCases destroys
+// them all in one place.
+struct FloorCase {
+  GpuImage source, target;
+  ComputePipeline pipeline;
+};
+
+FloorCase createCase(VulkanContext& vk, const Variant& variant, std::pair<int, int> size) {
+  auto [width, height] = size;
+  FloorCase c;
+  c.source = createImage(vk, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT);
+  c.target = createImage(vk, width, height, variant.target, VK_IMAGE_USAGE_STORAGE_BIT);
+  const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+  const SpecializationValue mode[] = {{uint32_t(shader::kFloorSpecMode), uint32_t(variant.mode)}};
+  c.pipeline = createComputePipeline(vk, {spirv::dispatch_floor, spirv::dispatch_floor_words}, bindings,
+                                     sizeof(FloorConstants), mode);
+  return c;
+}
+
+struct FloorCases {
+  VulkanContext& vk;
+  std::vector<FloorCase> list;
+  ~FloorCases() {
+    for (FloorCase& c : list) {
+      destroyPipeline(vk, c.pipeline);
+      destroyImage(vk, c.target);
+      destroyImage(vk, c.source);
+    }
+  }
+};
+
+Options parseOwnFlags(int& argc, char** argv) {
+  Options o;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view arg = argv[i];
+    auto value = [&](std::string_view flag) -> std::optional<std::string_view> {
+      if (arg.size() > flag.size() && arg.substr(0, flag.size()) == flag && arg[flag.size()] == '=')
+        return arg.substr(flag.size() + 1);
+      return std::nullopt;
+    };
+    if (auto s = value("--size")) o.size = parseSize(*s, "--size");
+    else if (auto r = value("--reps")) o.reps = parseInt(*r, "--reps", 5, 100000);
+    else if (auto d = value("--device")) o.device = std::string(*d);
+    else if (arg == "--validate") o.validate = true;
+    else argv[kept++] = argv[i];
+  }
+  argc = kept;
+  return o;
+}
+
+// Registers and runs every variant; returns with everything it made destroyed.
+void runAll(VulkanContext& vk, const Options& options) {
+  benchmark::AddCustomContext("vulkan_device", vk.info.name);
+  benchmark::AddCustomContext("vulkan_driver", vk.info.driver);
+  std::string size = fmt::format("{}x{}", options.size.first, options.size.second);
+  Rig rig(vk);
+  FloorCases cases{vk, {}};
+  for (const Variant& variant : kVariants) {
+    FloorCase& c = cases.list.emplace_back(createCase(vk, variant, options.size));
+    // Untimed: the layout change, and lavapipe's compile to machine code on the first dispatch.
+    rig.timed([&](VkCommandBuffer cmd) {
+      toGeneralLayout(cmd, {c.source.image, c.target.image});
+      recordDispatch(vk, cmd, c.pipeline, c.source, c.target);
+    });
+  }
+  for (size_t i = 0; i < cases.list.size(); ++i)
+    benchmark::RegisterBenchmark(fmt::format("floor/{}/{}", kVariants[i].name, size).c_str(),
+                                 [&, i](benchmark::State& state) {
+                                   const FloorCase& c = cases.list[i];
+                                   for (auto _ : state)
+                                     state.SetIterationTime(1e-3 * rig.timed([&](VkCommandBuffer cmd) {
+                                       recordDispatch(vk, cmd, c.pipeline, c.source, c.target);
+                                     }));
+                                 })
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(options.reps)
+        ->ReportAggregatesOnly(true);
+  benchmark::RunSpecifiedBenchmarks();
+}
+
+}  // namespace
+}  // namespace aor::bench
+
+int main(int argc, char** argv) {
+  using namespace aor::bench;
+  try {
+    Options options = parseOwnFlags(argc, argv);
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+    aor::ContextScope context(aor::ContextOptions{options.device, options.validate});
+    runAll(context.vk, options);
+    benchmark::Shutdown();
+    if (size_t messages = context.vk.validationMessageCount()) {
+      fmt::print(stderr, "dispatch_floor: {} validation messages\n", messages);
+      return 1;
+    }
+  } catch (const aor::InputError& e) {
+    fmt::print(stderr, "dispatch_floor: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "dispatch_floor: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}
