@@ -3,7 +3,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "dispatch_floor.h"
 
-layout(local_size_x = kFloorWorkgroupSize, local_size_y = kFloorWorkgroupSize) in;
+layout(local_size_x_id = kFloorSpecWorkgroupSize, local_size_y_id = kFloorSpecWorkgroupSize) in;
 layout(constant_id = kFloorSpecMode) const int kMode = kFloorModeNothing;
 layout(push_constant) uniform Push { FloorConstants pc; };
 layout(set = 0, binding = 0, rgba16f) uniform readonly image2D source;
