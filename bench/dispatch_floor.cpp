@@ -100,17 +100,11 @@ struct Rig {
     record(cmd);
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
     VK_CHECK(vkEndCommandBuffer(cmd));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    VK_CHECK(vkQueueSubmit(vk.queue, 1, &submit, fence));
-    VK_CHECK(vkWaitForFences(vk.device, 1, &fence, VK_TRUE, UINT64_MAX));
-    VK_CHECK(vkResetFences(vk.device, 1, &fence));
+    submitAndWait(vk, cmd, fence);
     uint64_t ticks[2];
     VK_CHECK(vkGetQueryPoolResults(vk.device, queries, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    uint64_t mask = vk.timestampValidBits >= 64 ? ~0ull : (1ull << vk.timestampValidBits) - 1;
-    return double((ticks[1] - ticks[0]) & mask) * vk.timestampPeriodNs * 1e-6;
+    return timestampDeltaMs(vk, ticks[0], ticks[1]);
   }
 };
 

@@ -77,22 +77,14 @@ void GraphExecutor::record(const graph::RenderGraph& graph, const graph::Compile
 }
 
 std::vector<GraphExecutor::PassTime> GraphExecutor::submitAndWait() {
-  VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-  cmdInfo.commandBuffer = cmd_;
-  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &cmdInfo;
-  VK_CHECK(vkQueueSubmit2(vk_.queue, 1, &submit, fence_));
-  VK_CHECK(vkWaitForFences(vk_.device, 1, &fence_, VK_TRUE, UINT64_MAX));
-  VK_CHECK(vkResetFences(vk_.device, 1, &fence_));
+  aor::submitAndWait(vk_, cmd_, fence_);
 
   std::vector<uint64_t> stamps(2 * recordedPasses_);
   std::vector<PassTime> times(recordedPasses_);
   if (recordedPasses_ == 0) return times;
   VK_CHECK(vkGetQueryPoolResults(vk_.device, queries_, 0, 2 * recordedPasses_, stamps.size() * sizeof(uint64_t),
                                  stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  uint64_t mask = vk_.timestampValidBits >= 64 ? ~0ull : ((1ull << vk_.timestampValidBits) - 1);
-  auto toMs = [&](uint64_t from, uint64_t to) { return double((to - from) & mask) * vk_.timestampPeriodNs * 1e-6; };
+  auto toMs = [&](uint64_t from, uint64_t to) { return timestampDeltaMs(vk_, from, to); };
   for (uint32_t i = 0; i < recordedPasses_; ++i)
     times[i] = {toMs(stamps[0], stamps[2 * i]), toMs(stamps[2 * i], stamps[2 * i + 1])};
   return times;

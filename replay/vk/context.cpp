@@ -241,6 +241,22 @@ void createContext(VulkanContext& ctx, const ContextOptions& options) {
   ctx.nearestSampler = createSampler(ctx.device, VK_FILTER_NEAREST);
 }
 
+void submitAndWait(const VulkanContext& ctx, VkCommandBuffer cmd, VkFence fence) {
+  VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cmdInfo.commandBuffer = cmd;
+  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cmdInfo;
+  VK_CHECK(vkQueueSubmit2(ctx.queue, 1, &submit, fence));
+  VK_CHECK(vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX));
+  VK_CHECK(vkResetFences(ctx.device, 1, &fence));
+}
+
+double timestampDeltaMs(const VulkanContext& ctx, uint64_t from, uint64_t to) {
+  uint64_t mask = ctx.timestampValidBits >= 64 ? ~0ull : ((1ull << ctx.timestampValidBits) - 1);
+  return double((to - from) & mask) * ctx.timestampPeriodNs * 1e-6;
+}
+
 void destroyContext(VulkanContext& ctx) {
   if (ctx.device) {
     vkDeviceWaitIdle(ctx.device);

@@ -44,6 +44,11 @@ struct VulkanContext {
 };
 
 std::vector<DeviceInfo> listDevices();
+// Runs one recorded command buffer on the context's queue and waits for it; `fence` is unsignalled
+// before and after.
+void submitAndWait(const VulkanContext& context, VkCommandBuffer cmd, VkFence fence);
+// Milliseconds between two timestamp-query values, wrapping within the queue's valid bits.
+double timestampDeltaMs(const VulkanContext& context, uint64_t from, uint64_t to);
 // Throws NoDeviceError when no device (or none matching the selector) exists.
 void createContext(VulkanContext& context, const ContextOptions& options);
 void destroyContext(VulkanContext& context);
