@@ -24,6 +24,7 @@
 #include "options/size.h"
 #include "shaders/dispatch_floor.h"
 #include "vk/context.h"
+#include "vk/dispatch.h"
 #include "vk/resources.h"
 #include "vk/vk_check.h"
 
@@ -142,24 +143,11 @@ void barrierBetweenDispatches(VkCommandBuffer cmd) {
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline, const GpuImage& source,
-                    const GpuImage& target) {
-  VkDescriptorImageInfo infos[2] = {{VK_NULL_HANDLE, source.view, VK_IMAGE_LAYOUT_GENERAL},
-                                    {VK_NULL_HANDLE, target.view, VK_IMAGE_LAYOUT_GENERAL}};
-  VkWriteDescriptorSet writes[2];
-  for (uint32_t i = 0; i < 2; ++i) {
-    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstBinding = i;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    writes[i].pImageInfo = &infos[i];
-  }
+void recordFloorDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline, const GpuImage& source,
+                         const GpuImage& target) {
+  const BoundImage images[] = {{source.view, VK_IMAGE_LAYOUT_GENERAL}, {target.view, VK_IMAGE_LAYOUT_GENERAL}};
   FloorConstants constants{{int(target.width), int(target.height)}};
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
-  vk.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 2, writes);
-  vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants, &constants);
-  uint32_t group = pipeline.workgroupSize;
-  vkCmdDispatch(cmd, (target.width + group - 1) / group, (target.height + group - 1) / group, 1);
+  aor::recordDispatch(vk, cmd, pipeline, images, &constants, target.width, target.height);
 }
 
 // The images and pipeline of one variant, made before any benchmark runs; FloorCases destroys
@@ -220,7 +208,7 @@ double timeChain(Rig& rig, const FloorCase& c) {
   double ms = rig.timed([&](VkCommandBuffer cmd) {
     for (int d = 0; d < kDispatchesPerSample; ++d) {
       if (d > 0) barrierBetweenDispatches(cmd);
-      recordDispatch(rig.vk, cmd, c.pipeline, c.source, c.target);
+      recordFloorDispatch(rig.vk, cmd, c.pipeline, c.source, c.target);
     }
   });
   return ms / kDispatchesPerSample;
@@ -244,7 +232,7 @@ void runAll(VulkanContext& vk, const Options& options) {
     // Untimed: the layout change, and lavapipe's compile to machine code on the first dispatch.
     rig.timed([&](VkCommandBuffer cmd) {
       toGeneralLayout(cmd, {c.source.image, c.target.image});
-      recordDispatch(vk, cmd, c.pipeline, c.source, c.target);
+      recordFloorDispatch(vk, cmd, c.pipeline, c.source, c.target);
     });
   }
   warmUp(rig, cases.list.back(), options.warmupMs);

@@ -24,9 +24,8 @@ struct PassContext {
 
 namespace aor {
 
-// Binds `pipeline`, pushes the descriptors (binding i = images[i], of the type the pipeline's
-// layout gives it: sampled images through the nearest sampler, storage images as they are) and
-// push constants, and dispatches one workgroup per tile of the pipeline's workgroup size.
+// recordDispatch (vk/dispatch.h) with binding i = images[i], in the layout the graph's barriers
+// left it in for this pass.
 void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<graph::ResourceId> images,
                      const void* pushConstants, uint32_t width, uint32_t height);
 
