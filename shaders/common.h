@@ -28,6 +28,10 @@ AOR_FUNC vec2 pixelToNdc(vec2 pixel, vec2 invSize) {
   return vec2((2.0f * pixel.x + 1.0f) * invSize.x - 1.0f, (2.0f * pixel.y + 1.0f) * invSize.y - 1.0f);
 }
 
+// Size of an image at 1/divisor of the frame's resolution: texel t stands for pixel divisor * t,
+// so the last row and column of an odd size keep a texel of their own.
+AOR_FUNC ivec2 reducedSize(ivec2 size, int divisor) { return (size + (divisor - 1)) / divisor; }
+
 // Relative depth similarity used by the spatial edge weights (seed 000: 5% of the larger depth).
 AOR_FUNC float depthEdgeWeight(float z1, float z2) {
   if (z1 <= 0.0f || z2 <= 0.0f) return (z1 <= 0.0f && z2 <= 0.0f) ? 1.0f : 0.0f;

@@ -11,6 +11,7 @@ layout(constant_id = kGtaoSpecSteps) const int kSteps = 3;
 layout(constant_id = kGtaoSpecBent) const bool kBent = true;
 layout(constant_id = kGtaoSpecViewNormals) const bool kViewNormals = false;
 layout(constant_id = kGtaoSpecThin) const bool kThin = false;
+layout(constant_id = kGtaoSpecHalfResolution) const bool kHalfResolution = false;
 
 layout(push_constant, scalar) uniform Push { GtaoConstants pc; };
 layout(set = 0, binding = 0, r32f) uniform readonly image2D viewDistance;  // linear distance, sky <= 0 (storage read: cheaper than a sampler on lavapipe)
@@ -27,10 +28,17 @@ vec3 gtaoLoadViewNormal(ivec2 pixel) {
 
 #include "gtao_pixel.glsl"
 
+// At half resolution each thread evaluates the top-left pixel of a 2x2 block at full resolution
+// (its samples still step over full-resolution pixels) and writes one texel; the upsample in the
+// last pass treats texel t as pixel 2t. The noise follows the texel, not the pixel: interleaved
+// gradient noise read at every other pixel varies by only 0.11 between neighbouring texels,
+// which the 5x5 blur would not average out.
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  int divisor = kHalfResolution ? 2 : 1;
+  ivec2 outputSize = reducedSize(pc.size, divisor);
+  if (texel.x >= outputSize.x || texel.y >= outputSize.y) return;
   vec3 bent;
-  float visibility = gtaoPixel(pixel, bent);
-  imageStore(aoOut, pixel, kBent ? vec4(bent, visibility) : vec4(visibility));
+  float visibility = gtaoPixelWithNoise(texel * divisor, gtaoNoise(texel, pc.frameIndex), bent);
+  imageStore(aoOut, texel, kBent ? vec4(bent, visibility) : vec4(visibility));
 }

@@ -13,6 +13,7 @@ AOR_CONST int kGtaoSpecSteps = 1;
 AOR_CONST int kGtaoSpecBent = 2;
 AOR_CONST int kGtaoSpecViewNormals = 3;
 AOR_CONST int kGtaoSpecThin = 4;  // thin-occluder heuristic on (thin > 0): one more square root per sample
+AOR_CONST int kGtaoSpecHalfResolution = 5;  // half_res=1: one output texel per 2x2 pixels (see gtao.comp)
 
 AOR_CONST float kGtaoFalloffRange = 0.615f;      // seed 000 / XeGTAO: flat inner, linear outer 61.5%
 AOR_CONST float kGoldenRatioFraction = 0.61803398875f;

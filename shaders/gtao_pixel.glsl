@@ -181,11 +181,12 @@ vec2 gtaoRotate(vec2 v, vec2 cosSin) {
   return vec2(v.x * cosSin.x - v.y * cosSin.y, v.x * cosSin.y + v.y * cosSin.x);
 }
 
-float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
+// `noise` is gtaoNoise of the pixel's place in the image GTAO writes: the pixel itself at full
+// resolution, its half-resolution texel otherwise (see gtao.comp).
+float gtaoPixelWithNoise(ivec2 pixel, vec2 noise, AOR_OUT(vec3) bentNormal) {
   bentNormal = vec3(0.0f, 0.0f, 1.0f);
   GtaoCentre c;
   if (!gtaoPixelCentre(pixel, c)) return 1.0f;
-  vec2 noise = gtaoNoise(pixel, pc.frameIndex);
 
   float visibility = 0.0f;
   float unoccluded = 0.0f;  // what the same slices integrate to with no occluder at all
@@ -211,4 +212,8 @@ float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
     }
   }
   return gtaoResolve(visibility, unoccluded, bentSum, c.viewDir, c.normal, bentNormal);
+}
+
+float gtaoPixel(ivec2 pixel, AOR_OUT(vec3) bentNormal) {
+  return gtaoPixelWithNoise(pixel, gtaoNoise(pixel, pc.frameIndex), bentNormal);
 }

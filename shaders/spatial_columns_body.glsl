@@ -11,15 +11,18 @@
 // taps, so the column's AO and distances are loaded once for the strip (kSpatialStrip + 4 rows)
 // instead of five times per pixel, and each edge weight is computed once.
 layout(local_size_x = kSpatialColumnsWorkgroupSize, local_size_y = kSpatialColumnsWorkgroupSize / kSpatialStrip) in;
-layout(push_constant, scalar) uniform Push { SpatialConstants pc; };
+layout(constant_id = kSpatialSpecHalfResolution) const bool kHalfResolution = false;
+layout(push_constant, scalar) uniform Push { SpatialConstants pc; };  // size: the AO image's
 layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoIn;  // R16F or RGBA16F (bent.xyz, visibility)
-layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;
+layout(set = 0, binding = 1, r32f) uniform readonly image2D viewDistance;  // full resolution
 layout(set = 0, binding = 2) uniform writeonly image2D columnSum;     // sum of gy * path * ao, AO format
 // RG16F: x = sum of gy * path (>= 1; 0 marks a sky pixel), y = the edge weight to the pixel on the
 // right (0 at the right border), so spatial needs no distance reads.
 layout(set = 0, binding = 3) uniform writeonly image2D columnWeightAndEdge;
 
 const int kWindow = kSpatialStrip + 2 * kSpatialRadius;  // rows the strip's taps touch
+
+float loadDistance(ivec2 texel) { return imageLoad(viewDistance, kHalfResolution ? texel * 2 : texel).r; }
 
 void main() {
   int x = int(gl_GlobalInvocationID.x);
@@ -33,7 +36,7 @@ void main() {
     int row = firstRow - kSpatialRadius + i;
     ivec2 tap = ivec2(x, clamp(row, 0, pc.size.y - 1));
     inside[i] = row == tap.y;
-    distance[i] = imageLoad(viewDistance, tap).r;
+    distance[i] = loadDistance(tap);
     ao[i] = imageLoad(aoIn, tap);
   }
   int right = min(x + 1, pc.size.x - 1);
@@ -55,7 +58,7 @@ void main() {
     }
     ivec2 pixel = ivec2(x, firstRow + s);
     if (pixel.y < pc.size.y) {
-      float rightEdge = right > x ? depthEdgeWeight(distance[centre], imageLoad(viewDistance, ivec2(right, pixel.y)).r) : 0.0;
+      float rightEdge = right > x ? depthEdgeWeight(distance[centre], loadDistance(ivec2(right, pixel.y))) : 0.0;
       imageStore(columnSum, pixel, sum);
       imageStore(columnWeightAndEdge, pixel, vec4(distance[centre] > 0.0 ? weightSum : 0.0, rightEdge, 0.0, 0.0));
     }

@@ -18,6 +18,10 @@
 #include "shared_begin.h"
 
 AOR_CONST int kSpatialSpecBent = 0;
+// spatial_columns: the AO is at half resolution (half_res=1), so texel t's distance is pixel 2t's.
+// The blur itself is the same 5x5 over texels: twice the footprint in pixels, as seed 001 blurs
+// its half-resolution AO before upsampling.
+AOR_CONST int kSpatialSpecHalfResolution = 1;
 AOR_CONST int kSpatialRadius = 2;          // 5x5
 AOR_CONST float kSpatialSigma = 1.5f;
 AOR_CONST int kSpatialStrip = 4;          // pixels per spatial_columns thread (a column strip)

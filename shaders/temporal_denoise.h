@@ -7,6 +7,9 @@
 
 AOR_CONST int kTemporalSpecBent = 0;
 AOR_CONST int kTemporalSpecHistory = 1;   // false on the first frame / after a reset: pass-through
+// half_res=1: the current AO is at half resolution and this pass upsamples it (also run alone, as
+// `upsample`, when there is no temporal pass).
+AOR_CONST int kTemporalSpecHalfResolution = 2;
 AOR_CONST float kTemporalDepthTolerance = 0.05f;  // seed 000: |expected - stored| / expected > 5%
 
 struct TemporalConstants {
@@ -53,6 +56,23 @@ AOR_FUNC bool depthConsistent(float expected, float stored, float tolerance) {
 AOR_FUNC float temporalBlendAo(float currentAo, float historyAo, float lo, float hi, float blend) {
   bool usable = historyAo >= 0.0f && historyAo <= 1.0f;  // false for NaN
   return usable ? mix(currentAo, clamp(historyAo, lo, hi), blend) : currentAo;
+}
+
+// Weights of the four half-resolution texels around a full-resolution pixel, in the order
+// (0,0), (1,0), (0,1), (1,1) from the texel at floor(pixel / 2). Texel t stands for pixel 2t (GTAO
+// evaluated it there), so `fraction` is 0 or 0.5 per axis. Each bilinear weight is scaled by how
+// well the texel's distance matches the pixel's (the spatial pass's edge weight), so AO does not
+// bleed across depth edges. Where no texel lies on the pixel's surface (a feature thinner than
+// two pixels) the plain bilinear weights are returned: some value must be given, and it is the
+// neighbourhood's. Seed 001 upsamples with a 5x5 kernel; 2x2 is enough here because the 5x5 blur
+// ran on the texels before.
+AOR_FUNC vec4 upsampleWeights(vec2 fraction, float pixelDistance, vec4 texelDistances) {
+  vec4 bilinear = vec4((1.0f - fraction.x) * (1.0f - fraction.y), fraction.x * (1.0f - fraction.y),
+                       (1.0f - fraction.x) * fraction.y, fraction.x * fraction.y);
+  vec4 similarity = vec4(depthEdgeWeight(pixelDistance, texelDistances.x), depthEdgeWeight(pixelDistance, texelDistances.y),
+                         depthEdgeWeight(pixelDistance, texelDistances.z), depthEdgeWeight(pixelDistance, texelDistances.w));
+  vec4 weights = bilinear * similarity;
+  return weights.x + weights.y + weights.z + weights.w > 0.0f ? weights : bilinear;
 }
 
 #include "shared_end.h"

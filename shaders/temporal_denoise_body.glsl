@@ -7,8 +7,9 @@
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kTemporalSpecBent) const bool kBent = true;
 layout(constant_id = kTemporalSpecHistory) const bool kHasHistory = true;
+layout(constant_id = kTemporalSpecHalfResolution) const bool kHalfResolution = false;
 layout(push_constant, scalar) uniform Push { TemporalConstants pc; };
-layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoCurrent;  // spatial (or GTAO) output
+layout(set = 0, binding = 0, AOR_AO_FORMAT) uniform readonly image2D aoCurrent;  // spatial (or GTAO) output; half size with kHalfResolution
 // Every image is read as a storage image (cheaper than a sampler on lavapipe) and the history's
 // bilinear filter is done here: the same weights on every device, instead of each sampler's own
 // sub-texel precision (8 bits on most GPUs).
@@ -28,11 +29,50 @@ vec4 historyBilinear(vec2 position) {
   return mix(top, bottom, f.y);
 }
 
+float visibilityOf(vec4 ao) { return kBent ? ao.w : ao.r; }
+
+// Visibility range of the current AO in the pixel's 3x3 neighbourhood (layer 3).
+vec2 neighbourhoodRange(ivec2 pixel, float centre) {
+  vec2 range = vec2(centre);  // the centre is `current`, already loaded
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      float v = visibilityOf(imageLoad(aoCurrent, clamp(pixel + ivec2(dx, dy), ivec2(0), pc.size - 1)));
+      range = vec2(min(range.x, v), max(range.y, v));
+    }
+  return range;
+}
+
+// The half-resolution AO at a full-resolution pixel (half_res=1), and through `range` the
+// visibility range of the four texels it blends, which layer 3 clamps history to (they cover the
+// pixel's 3x3 neighbourhood and more). A pixel GTAO evaluated (pixel 2t) gets its texel as is.
+vec4 upsampledCurrent(ivec2 pixel, out vec2 range) {
+  ivec2 base = pixel / 2;
+  ivec2 last = reducedSize(pc.size, 2) - 1;
+  vec4 texels[4];
+  vec4 texelDistances;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 texel = min(base + ivec2(i & 1, i >> 1), last);
+    texels[i] = imageLoad(aoCurrent, texel);
+    texelDistances[i] = imageLoad(viewDistance, texel * 2).r;
+  }
+  range = vec2(min(min(visibilityOf(texels[0]), visibilityOf(texels[1])), min(visibilityOf(texels[2]), visibilityOf(texels[3]))),
+               max(max(visibilityOf(texels[0]), visibilityOf(texels[1])), max(visibilityOf(texels[2]), visibilityOf(texels[3]))));
+  float dist = imageLoad(viewDistance, pixel).r;
+  if (pixel == base * 2) return texels[0];
+  if (!(dist > 0.0)) return kBent ? vec4(0.0, 0.0, 1.0, 1.0) : vec4(1.0);  // sky: what GTAO writes there
+  vec4 w = upsampleWeights(vec2(pixel - base * 2) * 0.5, dist, texelDistances);
+  vec4 result = (w.x * texels[0] + w.y * texels[1] + w.z * texels[2] + w.w * texels[3]) / (w.x + w.y + w.z + w.w);
+  if (!kBent) return result;
+  float len = length(result.xyz);  // unit normals blended: re-normalised, as the spatial pass does
+  return vec4(len > 1e-6 ? result.xyz / len : texels[0].xyz, result.w);
+}
+
 // The blended value of one pixel, or `current` where no history applies: sky, off-screen in the
 // previous frame, or another surface there. It returns early, so that a GPU skips the history
 // and neighbourhood reads of those pixels, and main() stores once (on lavapipe every imageStore
 // in a shader costs a full store, whichever branch it is in).
-vec4 temporalPixel(ivec2 pixel, vec4 current) {
+vec4 temporalPixel(ivec2 pixel, vec4 current, vec2 upsampledRange) {
   float dist = imageLoad(viewDistance, pixel).r;
   vec3 view = viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
   vec3 previousView = (pc.viewToPreviousView * vec4(view, 1.0)).xyz;
@@ -47,19 +87,10 @@ vec4 temporalPixel(ivec2 pixel, vec4 current) {
   if (!depthConsistent(expected, imageLoad(previousDistance, nearest).r, kTemporalDepthTolerance)) return current;
 
   vec4 history = historyBilinear(previousPixel);
-  // Layer 3: clamp history AO into the current 3x3 neighbourhood (bent normals are not clamped).
-  float currentAo = kBent ? current.w : current.r;
-  float lo = currentAo, hi = currentAo;  // the centre is `current`, already loaded
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      if (dx == 0 && dy == 0) continue;
-      ivec2 p = clamp(pixel + ivec2(dx, dy), ivec2(0), pc.size - 1);
-      float v = kBent ? imageLoad(aoCurrent, p).w : imageLoad(aoCurrent, p).r;
-      lo = min(lo, v);
-      hi = max(hi, v);
-    }
-  float historyAo = kBent ? history.w : history.r;
-  float ao = temporalBlendAo(currentAo, historyAo, lo, hi, pc.blend);
+  // Layer 3: clamp history AO into the current neighbourhood (bent normals are not clamped).
+  float currentAo = visibilityOf(current);
+  vec2 range = kHalfResolution ? upsampledRange : neighbourhoodRange(pixel, currentAo);
+  float ao = temporalBlendAo(currentAo, visibilityOf(history), range.x, range.y, pc.blend);
   if (!kBent) return vec4(ao);
   vec3 bent = mix(current.xyz, history.xyz, pc.blend);
   float len = length(bent);
@@ -70,7 +101,8 @@ vec4 temporalPixel(ivec2 pixel, vec4 current) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
-  vec4 current = imageLoad(aoCurrent, pixel);
+  vec2 upsampledRange = vec2(0.0);
+  vec4 current = kHalfResolution ? upsampledCurrent(pixel, upsampledRange) : imageLoad(aoCurrent, pixel);
   // No history must leave the current value bit for bit.
-  imageStore(aoOut, pixel, kHasHistory ? temporalPixel(pixel, current) : current);
+  imageStore(aoOut, pixel, kHasHistory ? temporalPixel(pixel, current, upsampledRange) : current);
 }

@@ -9,7 +9,8 @@
 
 namespace aor {
 
-// GTAO pass alone (no denoising) on a G-buffer with world-space normals.
+// GTAO pass alone (no denoising) on a G-buffer with world-space normals; with half_res=1 the
+// image is aoWorkingSize(camera, settings), as the GPU's is.
 CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings);
 
 }  // namespace aor

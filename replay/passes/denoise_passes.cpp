@@ -9,9 +9,10 @@ namespace aor {
 graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                                  const AoSettings& settings, graph::ResourceId ao, graph::ResourceId distance) {
   bool bent = settings.bent != 0;
+  bool halfResolution = settings.halfRes != 0;
   shader::SpatialConstants constants{};
-  constants.size = {camera.width, camera.height};
-  uint32_t w = uint32_t(camera.width), h = uint32_t(camera.height);
+  constants.size = aoWorkingSize(camera, settings);
+  uint32_t w = uint32_t(constants.size.x), h = uint32_t(constants.size.y);
   auto columnSum = graph.createImage("ao_column_sum", {w, h, aoFormat(bent)});
   auto columnWeightAndEdge = graph.createImage("ao_column_weight_edge", {w, h, VK_FORMAT_R16G16_SFLOAT});
   auto blurred = graph.createImage("ao_blurred", {w, h, aoFormat(bent)});
@@ -24,8 +25,8 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
         b.write(columnSum);
         b.write(columnWeightAndEdge);
       },
-      [&pipelines, bent, constants, ao, distance, columnSum, columnWeightAndEdge](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.spatialColumns(bent),
+      [&pipelines, bent, halfResolution, constants, ao, distance, columnSum, columnWeightAndEdge](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.spatialColumns(bent, halfResolution),
                         {ao, distance, columnSum, columnWeightAndEdge}, &constants,
                         uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
@@ -45,9 +46,13 @@ graph::ResourceId addSpatialPass(graph::RenderGraph& graph, PassPipelines& pipel
   return blurred;
 }
 
-graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
-                                  const AoSettings& settings, const TemporalInputs& in) {
+namespace {
+
+// The temporal shader as `temporal` (blending history when there is some) or as `upsample`.
+graph::ResourceId addTemporalShaderPass(const char* name, graph::RenderGraph& graph, PassPipelines& pipelines,
+                                        const FrameCamera& camera, const AoSettings& settings, const TemporalInputs& in) {
   bool bent = settings.bent != 0;
+  bool halfResolution = settings.halfRes != 0;
   bool hasHistory = in.historyAo != graph::kNoResource && in.historyDistance != graph::kNoResource;
   auto constants = shader::temporalReprojection(camera.view, camera.projection, in.previousCamera.view,
                                                 in.previousCamera.projection, camera.width, camera.height);
@@ -58,7 +63,7 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
   graph::ResourceId historyAo = hasHistory ? in.historyAo : in.current;
   graph::ResourceId historyDistance = hasHistory ? in.historyDistance : in.distance;
   graph.addPass(
-      "temporal",
+      name,
       [&](graph::PassBuilder& b) {
         b.read(in.current, graph::Access::StorageRead);
         b.read(in.distance, graph::Access::StorageRead);
@@ -68,12 +73,26 @@ graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipe
         }
         b.write(in.target);
       },
-      [&pipelines, bent, hasHistory, constants, in, historyAo, historyDistance](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.temporal(bent, hasHistory),
+      [&pipelines, bent, hasHistory, halfResolution, constants, in, historyAo, historyDistance](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.temporal(bent, hasHistory, halfResolution),
                         {in.current, in.distance, historyAo, historyDistance, in.target},
                         &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
       });
   return in.target;
+}
+
+}  // namespace
+
+graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
+                                  const AoSettings& settings, const TemporalInputs& inputs) {
+  return addTemporalShaderPass("temporal", graph, pipelines, camera, settings, inputs);
+}
+
+graph::ResourceId addUpsamplePass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
+                                  const AoSettings& settings, graph::ResourceId current, graph::ResourceId distance,
+                                  graph::ResourceId target) {
+  TemporalInputs inputs{current, distance, graph::kNoResource, graph::kNoResource, target, camera};
+  return addTemporalShaderPass("upsample", graph, pipelines, camera, settings, inputs);
 }
 
 }  // namespace aor

@@ -25,11 +25,17 @@ shader::GtaoConstants gtaoConstants(const FrameCamera& camera, const AoSettings&
   return c;
 }
 
+glm::ivec2 aoWorkingSize(const FrameCamera& camera, const AoSettings& settings) {
+  glm::ivec2 size(camera.width, camera.height);
+  return settings.halfRes ? shader::reducedSize(size, 2) : size;
+}
+
 graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                               const AoSettings& settings, const GtaoInputs& inputs) {
   bool bent = settings.bent != 0;
   auto constants = gtaoConstants(camera, settings);
-  auto ao = graph.createImage("ao_noisy", {uint32_t(camera.width), uint32_t(camera.height), aoFormat(bent)});
+  glm::uvec2 size(aoWorkingSize(camera, settings));
+  auto ao = graph.createImage("ao_noisy", {size.x, size.y, aoFormat(bent)});
   graph.addPass(
       "gtao",
       [&](graph::PassBuilder& b) {
@@ -37,10 +43,10 @@ graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipeline
         b.read(inputs.normals, graph::Access::StorageRead);
         b.write(ao);
       },
-      [&pipelines, slices = settings.slices, steps = settings.steps, bent, thin = settings.thin > 0.0f, constants, inputs,
-       ao](graph::PassContext& ctx) {
-        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals, thin), {inputs.distance, inputs.normals, ao},
-                        &constants, uint32_t(constants.size.x), uint32_t(constants.size.y));
+      [&pipelines, slices = settings.slices, steps = settings.steps, bent, thin = settings.thin > 0.0f,
+       halfResolution = settings.halfRes != 0, constants, inputs, ao, size](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.gtao(slices, steps, bent, inputs.viewSpaceNormals, thin, halfResolution),
+                        {inputs.distance, inputs.normals, ao}, &constants, size.x, size.y);
       });
   return ao;
 }

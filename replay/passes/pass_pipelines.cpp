@@ -47,13 +47,14 @@ const ComputePipeline& PassPipelines::reconstructNormals() {
              shader::kWorkgroupSize);
 }
 
-const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin) {
+const ComputePipeline& PassPipelines::gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin,
+                                           bool halfResolution) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage};  // distance and normals read as storage images
   SpecializationValue values[] = {spec(shader::kGtaoSpecSlices, slices), spec(shader::kGtaoSpecSteps, steps),
                                   spec(shader::kGtaoSpecBent, bent), spec(shader::kGtaoSpecViewNormals, viewSpaceNormals),
-                                  spec(shader::kGtaoSpecThin, thin)};
-  return get(fmt::format("gtao:{}:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals, thin), spirv::gtao_code(), bindings,
-             sizeof(shader::GtaoConstants), shader::kGtaoWorkgroupSize, values);
+                                  spec(shader::kGtaoSpecThin, thin), spec(shader::kGtaoSpecHalfResolution, halfResolution)};
+  return get(fmt::format("gtao:{}:{}:{}:{}:{}:{}", slices, steps, bent, viewSpaceNormals, thin, halfResolution),
+             spirv::gtao_code(), bindings, sizeof(shader::GtaoConstants), shader::kGtaoWorkgroupSize, values);
 }
 
 const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool viewSpaceNormals, bool thin) {
@@ -66,11 +67,12 @@ const ComputePipeline& PassPipelines::gtaoReference(int slices, bool bent, bool 
 
 // The AO images' format is fixed in each SPIR-V (lavapipe cannot read storage images without a
 // format), hence one module per aoFormat(bent).
-const ComputePipeline& PassPipelines::spatialColumns(bool bent) {
+const ComputePipeline& PassPipelines::spatialColumns(bool bent, bool halfResolution) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage};
+  SpecializationValue values[] = {spec(shader::kSpatialSpecHalfResolution, halfResolution)};
   auto code = bent ? spirv::spatial_columns_rgba16f_code() : spirv::spatial_columns_r16f_code();
-  return get(fmt::format("spatial_columns:{}", bent), code, bindings, sizeof(shader::SpatialConstants),
-             shader::kSpatialColumnsWorkgroupSize);
+  return get(fmt::format("spatial_columns:{}:{}", bent, halfResolution), code, bindings, sizeof(shader::SpatialConstants),
+             shader::kSpatialColumnsWorkgroupSize, values);
 }
 
 const ComputePipeline& PassPipelines::spatial(bool bent) {
@@ -80,11 +82,13 @@ const ComputePipeline& PassPipelines::spatial(bool bent) {
   return get(fmt::format("spatial:{}", bent), code, bindings, sizeof(shader::SpatialConstants), shader::kWorkgroupSize, values);
 }
 
-const ComputePipeline& PassPipelines::temporal(bool bent, bool hasHistory) {
+const ComputePipeline& PassPipelines::temporal(bool bent, bool hasHistory, bool halfResolution) {
   VkDescriptorType bindings[] = {kStorage, kStorage, kStorage, kStorage, kStorage};
-  SpecializationValue values[] = {spec(shader::kTemporalSpecBent, bent), spec(shader::kTemporalSpecHistory, hasHistory)};
+  SpecializationValue values[] = {spec(shader::kTemporalSpecBent, bent), spec(shader::kTemporalSpecHistory, hasHistory),
+                                  spec(shader::kTemporalSpecHalfResolution, halfResolution)};
   auto code = bent ? spirv::temporal_denoise_rgba16f_code() : spirv::temporal_denoise_r16f_code();
-  return get(fmt::format("temporal:{}:{}", bent, hasHistory), code, bindings, sizeof(shader::TemporalConstants), shader::kWorkgroupSize, values);
+  return get(fmt::format("temporal:{}:{}:{}", bent, hasHistory, halfResolution), code, bindings,
+             sizeof(shader::TemporalConstants), shader::kWorkgroupSize, values);
 }
 
 }  // namespace aor

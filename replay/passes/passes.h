@@ -25,11 +25,11 @@ class PassPipelines {
   PassPipelines& operator=(const PassPipelines&) = delete;
   const ComputePipeline& linearizeDepth();
   const ComputePipeline& reconstructNormals();
-  const ComputePipeline& gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin);
+  const ComputePipeline& gtao(int slices, int steps, bool bent, bool viewSpaceNormals, bool thin, bool halfResolution);
   const ComputePipeline& gtaoReference(int slices, bool bent, bool viewSpaceNormals, bool thin);
-  const ComputePipeline& spatialColumns(bool bent);
+  const ComputePipeline& spatialColumns(bool bent, bool halfResolution);
   const ComputePipeline& spatial(bool bent);
-  const ComputePipeline& temporal(bool bent, bool hasHistory);
+  const ComputePipeline& temporal(bool bent, bool hasHistory, bool halfResolution);
 
  private:
   // The pipeline under `key`, created on first use.
@@ -49,6 +49,9 @@ struct FrameCamera {
   int width = 0, height = 0;
   uint32_t frameIndex = 0;
 };
+// Size of the images GTAO and the spatial blur write: the frame's, or half of it (rounded up) with
+// half_res=1. The temporal pass (or `upsample`) brings the AO back to the frame's size.
+glm::ivec2 aoWorkingSize(const FrameCamera& camera, const AoSettings& settings);
 
 // Copies host staging buffers into the G-buffer images (normals may be kNoResource).
 void addUploadPass(graph::RenderGraph& graph, const GpuBuffer& depth, graph::ResourceId depthImage,
@@ -84,6 +87,11 @@ struct TemporalInputs {
 };
 graph::ResourceId addTemporalPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
                                   const AoSettings& settings, const TemporalInputs& inputs);
+// half_res=1 without a temporal pass: the temporal shader's upsample alone (no history), from the
+// half-resolution `current` to the frame-sized `target`.
+graph::ResourceId addUpsamplePass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,
+                                  const AoSettings& settings, graph::ResourceId current, graph::ResourceId distance,
+                                  graph::ResourceId target);
 // Copies `image` into a host-visible buffer; a root of the graph.
 void addReadbackPass(graph::RenderGraph& graph, graph::ResourceId image, const GpuBuffer& target);
 // Fills every channel of `image` with `value` (a side effect: never culled). Test-only fault

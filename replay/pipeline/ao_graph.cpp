@@ -83,6 +83,10 @@ AoFrameGraph buildAoFrameGraph(const AoFrameInputs& in, PassPipelines& pipelines
     TemporalInputs t{denoised, distance, graph::kNoResource, graph::kNoResource, filtered, in.previousCamera};
     addTemporalPass(g, pipelines, cam, settings, t);
     frame.notes["temporal"] = settings.temporal <= 0.0f ? "temporal=0" : "single-frame replay: no history";
+    // Half-resolution AO still has to reach the frame's size; the temporal pass does it otherwise.
+    if (settings.halfRes)
+      frame.finalAo = addUpsamplePass(g, pipelines, cam, settings, denoised, distance,
+                                      g.createImage("ao_upsampled", {w, h, aoFormat(bent)}));
   }
   if (!settings.spatial) frame.notes["spatial"] = frame.notes["spatial_columns"] = "spatial=0";
   if (in.hasNormals) frame.notes["reconstruct_normals"] = "the capture has normals";

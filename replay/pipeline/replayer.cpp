@@ -226,7 +226,7 @@ void poisonAoHistory(const AoFrameInputs& inputs, GraphResources& resources, Gra
 void prepareFirstFrame(const AoFrameInputs& inputs, PassPipelines& pipelines, GraphResources& resources,
                        GraphExecutor& executor, const AoFrameBuffers& buffers) {
   compileAndRecord(buildAoFrameGraph(inputs, pipelines, historyStatesOf(resources), buffers).graph, resources, executor);
-  if (inputs.temporalWanted) pipelines.temporal(inputs.settings.bent != 0, true);
+  if (inputs.temporalWanted) pipelines.temporal(inputs.settings.bent != 0, true, inputs.settings.halfRes != 0);
 }
 
 }  // namespace

@@ -36,6 +36,8 @@ const std::vector<Key>& keys() {
       {"spatial", 0, 1, true, [](AoSettings& s, double v) { s.spatial = int(v); }, "spatial denoise pass 0/1"},
       {"temporal", 0, 0.98, false, [](AoSettings& s, double v) { s.temporal = float(v); }, "history weight, 0 = no temporal pass"},
       {"bent", 0, 1, true, [](AoSettings& s, double v) { s.bent = int(v); }, "bent normals 0/1"},
+      {"half_res", 0, 1, true, [](AoSettings& s, double v) { s.halfRes = int(v); },
+       "GTAO and spatial blur at half resolution, upsampled by the last pass 0/1"},
   };
   return k;
 }
@@ -92,6 +94,7 @@ void applyTechnique(AoSettings& settings, AoTechnique technique) {
   if (technique == AoTechnique::Reference) {
     settings.spatial = 0;
     settings.temporal = 0.0f;
+    settings.halfRes = 0;
   }
 }
 
@@ -101,7 +104,8 @@ static double asWritten(float value) { return std::stod(fmt::format("{}", value)
 nlohmann::json toJson(const AoSettings& s) {
   return {{"technique", techniqueName(s.technique)}, {"radius", asWritten(s.radius)}, {"slices", s.slices},
           {"steps", s.steps}, {"falloff", asWritten(s.falloff)}, {"power", asWritten(s.power)},
-          {"thin", asWritten(s.thin)}, {"spatial", s.spatial}, {"temporal", asWritten(s.temporal)}, {"bent", s.bent}};
+          {"thin", asWritten(s.thin)}, {"spatial", s.spatial}, {"temporal", asWritten(s.temporal)}, {"bent", s.bent},
+          {"half_res", s.halfRes}};
 }
 
 }  // namespace aor

@@ -26,6 +26,7 @@ struct AoSettings {
   int spatial = 1;            // 0/1
   float temporal = 0.9f;      // history weight 0..0.98; 0 = no temporal pass
   int bent = 1;               // 0/1: bent normals computed and written
+  int halfRes = 0;            // 0/1: GTAO and the spatial blur at half resolution, upsampled in the last pass
 
   bool operator==(const AoSettings&) const = default;
 };
@@ -37,7 +38,8 @@ void applySetting(AoSettings& settings, std::string_view assignment);
 nlohmann::json toJson(const AoSettings& settings);
 const char* techniqueName(AoTechnique technique);
 AoTechnique parseTechnique(std::string_view name);  // "gtao" | "reference"; throws InputError
-// Sets the technique; `reference` also sets spatial=0 and temporal=0 (it is never denoised).
+// Sets the technique; `reference` also sets spatial=0, temporal=0 (it is never denoised) and
+// half_res=0 (it is the full-resolution yardstick).
 void applyTechnique(AoSettings& settings, AoTechnique technique);
 std::string describeSettingKeys();
 

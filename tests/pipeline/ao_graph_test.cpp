@@ -170,6 +170,41 @@ TEST(AoGraph, BentZeroUsesOneChannelAoImages) {
   EXPECT_EQ(withBent.resource("ao_noisy")->desc.format, VK_FORMAT_R16G16B16A16_SFLOAT);
 }
 
+// half_res=1 on an odd size: GTAO and the blur write 81x45 images for 161x89 pixels (texel t is
+// pixel 2t, so the last row and column keep a texel); the temporal pass upsamples into the
+// frame-sized history, and without one an `upsample` pass does.
+TEST(AoGraph, HalfResolutionShrinksGtaoAndBlurImagesAndUpsamplesLast) {
+  Case c;
+  c.width = 161;
+  c.height = 89;
+  c.settings.halfRes = 1;
+  auto b = build(c);
+  for (const char* name : {"ao_noisy", "ao_column_sum", "ao_column_weight_edge", "ao_blurred"}) {
+    EXPECT_EQ(b.resource(name)->desc.width, 81u) << name;
+    EXPECT_EQ(b.resource(name)->desc.height, 45u) << name;
+  }
+  for (const char* name : {"ao_history.current", "ao_history.previous", "distance_history.current"}) {
+    EXPECT_EQ(b.resource(name)->desc.width, 161u) << name;
+    EXPECT_EQ(b.resource(name)->desc.height, 89u) << name;
+  }
+  EXPECT_TRUE(b.runs("temporal"));
+  EXPECT_EQ(b.resource("ao_upsampled"), nullptr) << "the temporal pass upsamples; no pass of its own";
+
+  c.multiFrame = false;
+  auto single = build(c);
+  EXPECT_FALSE(single.runs("temporal"));
+  EXPECT_TRUE(single.runs("upsample"));
+  ASSERT_NE(single.resource("ao_upsampled"), nullptr);
+  EXPECT_EQ(single.resource("ao_upsampled")->desc.width, 161u);
+  EXPECT_EQ(single.resource("ao_noisy")->desc.width, 81u);
+
+  Case full = c;
+  full.settings.halfRes = 0;
+  auto fullSingle = build(full);
+  EXPECT_FALSE(fullSingle.runs("upsample"));
+  EXPECT_EQ(fullSingle.resource("ao_noisy")->desc.width, 161u);
+}
+
 TEST(AoGraph, HistoryIsAbsentWhenInvalid) {
   Case c;
   c.historyValid = false;
