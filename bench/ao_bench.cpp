@@ -1,6 +1,7 @@
 // ao_bench: GPU time of each pass and of the whole AO pipeline, per preset and resolution, from
 // Vulkan timestamp queries, reported to Google Benchmark as manual time (so its JSON is what
-// Debian's compare.py and `aoreplay compare` read).
+// Debian's compare.py and `aoreplay compare` read). Besides the presets, each size has the high
+// preset with bent=0 (pipeline only) and with half_res=1 (every pass).
 //
 // Each configuration replays frames 0:2 of the capture once (pipelines are compiled in the
 // replay's set-up, warm-ups run first) with `--reps` timed executions per frame; the second frame has valid
@@ -60,9 +61,10 @@ struct Config {
   int width = 0, height = 0;
   AoSettings settings;
   std::string label() const {
-    return fmt::format("s{}x{}{}/{}x{}", settings.slices, settings.steps, settings.bent ? "" : "/bent:0", width, height);
+    return fmt::format("s{}x{}{}{}/{}x{}", settings.slices, settings.steps, settings.bent ? "" : "/bent:0",
+                       settings.halfRes ? "/half_res:1" : "", width, height);
   }
-  auto key() const { return std::tuple(width, height, settings.slices, settings.steps, settings.bent); }
+  auto key() const { return std::tuple(width, height, settings.slices, settings.steps, settings.bent, settings.halfRes); }
 };
 
 struct Measured {
@@ -143,10 +145,11 @@ void registerConfig(const Config& config, bool perPass) {
     registerSeries(std::string(pass) + "/" + config.label(), config, pass);
 }
 
-Config makeConfig(int w, int h, const std::string& preset, int bent) {
+Config makeConfig(int w, int h, const std::string& preset, int bent, int halfRes = 0) {
   Config c{w, h, {}};
   applyPreset(c.settings, preset);
   c.settings.bent = bent;
+  c.settings.halfRes = halfRes;
   return c;
 }
 
@@ -174,6 +177,7 @@ void registerAll() {
   for (auto [w, h] : o.sizes) {
     for (const auto& preset : o.presets) registerConfig(makeConfig(w, h, preset, 1), true);
     registerConfig(makeConfig(w, h, "high", 0), false);  // bent=0 vs bent=1
+    registerConfig(makeConfig(w, h, "high", 1, 1), true);  // half_res=1: GTAO and the blur at half size
   }
   for (const auto& c : scalingConfigs()) registerSeries("gtao/" + c.label(), c, "gtao");
 }
