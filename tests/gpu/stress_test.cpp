@@ -160,23 +160,28 @@ bool allFinite(const std::vector<float>& values) {
   return true;
 }
 
-// Full pipeline (GTAO, spatial, temporal with history) twice: finite, in [0,1], bit-identical.
-void expectFiniteBoundedDeterministic(const fs::path& capture, const std::string& name) {
-  AoSettings settings;
-  settings.radius = float(loadCapture(capture).scene.value("ao_radius", 1.0));
-  auto first = replay(capture, settings);
-  auto second = replay(capture, settings);
-  ASSERT_EQ(first.frames.size(), second.frames.size());
-  for (size_t k = 0; k < first.frames.size(); ++k) {
-    size_t bad = 0;
-    EXPECT_TRUE(finiteInUnitRange(first.frames[k].visibility, bad))
-        << name << " frame " << k << " pixel " << bad << " = " << first.frames[k].visibility[bad];
-    EXPECT_TRUE(allFinite(first.frames[k].bent)) << name << " frame " << k;
-    EXPECT_TRUE(bitIdentical(first.frames[k].visibility, second.frames[k].visibility)) << name << " frame " << k;
-    EXPECT_TRUE(bitIdentical(first.frames[k].bent, second.frames[k].bent)) << name << " frame " << k;
-  }
-  if (first.frames.size() > 1) {
-    EXPECT_TRUE(first.result.frames[1].historyValid) << name;  // history really blended
+// Full pipeline (GTAO, spatial, temporal with history) twice, at full and at half resolution:
+// finite, in [0,1], bit-identical.
+void expectFiniteBoundedDeterministic(const fs::path& capture, const std::string& caseName) {
+  for (int halfRes : {0, 1}) {
+    AoSettings settings;
+    settings.radius = float(loadCapture(capture).scene.value("ao_radius", 1.0));
+    settings.halfRes = halfRes;
+    std::string name = caseName + (halfRes ? " half_res=1" : "");
+    auto first = replay(capture, settings);
+    auto second = replay(capture, settings);
+    ASSERT_EQ(first.frames.size(), second.frames.size());
+    for (size_t k = 0; k < first.frames.size(); ++k) {
+      size_t bad = 0;
+      EXPECT_TRUE(finiteInUnitRange(first.frames[k].visibility, bad))
+          << name << " frame " << k << " pixel " << bad << " = " << first.frames[k].visibility[bad];
+      EXPECT_TRUE(allFinite(first.frames[k].bent)) << name << " frame " << k;
+      EXPECT_TRUE(bitIdentical(first.frames[k].visibility, second.frames[k].visibility)) << name << " frame " << k;
+      EXPECT_TRUE(bitIdentical(first.frames[k].bent, second.frames[k].bent)) << name << " frame " << k;
+    }
+    if (first.frames.size() > 1) {
+      EXPECT_TRUE(first.result.frames[1].historyValid) << name;  // history really blended
+    }
   }
 }
 
