@@ -57,6 +57,9 @@ void registerCompareCommand(CLI::App& app) {
       ->check(CLI::Range(1e-9, 0.5));
   cmd->add_option("--min-effect", args->options.minEffect, "smallest relative median change that counts")
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--min-effect-ms", args->options.minEffectMs,
+                  "smallest absolute median change that counts, in milliseconds (default 0.001)")
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--spread-multiple", args->options.spreadMultiple,
                   "the change must also exceed this many baseline spreads (robust, relative)")
       ->check(CLI::Range(0.0, 100.0));

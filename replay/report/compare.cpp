@@ -164,7 +164,8 @@ Comparison compareTimings(const TimingSamples& baseline, const TimingSamples& ca
     p.newMedian = medianOf(other->samples);
     p.change = (p.newMedian - p.baselineMedian) / p.baselineMedian;
     p.baselineSpread = robustSpread(base) / p.baselineMedian;
-    p.threshold = std::max(options.minEffect, options.spreadMultiple * p.baselineSpread);
+    p.threshold = std::max({options.minEffect, options.spreadMultiple * p.baselineSpread,
+                            options.minEffectMs / p.baselineMedian});
     p.pValue = mannWhitneyU(base, other->samples).pValue;
     p.alpha = options.alpha / double(std::max<size_t>(judgedCount, 1));
     p.verdict = decideVerdict(p, options);
@@ -206,6 +207,7 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
           {"only_in_new", c.onlyInNew},
           {"significant_slowdown", c.significantSlowdown()},
           {"options", {{"alpha", options.alpha}, {"min_effect", options.minEffect},
+                       {"min_effect_ms", options.minEffectMs},
                        {"spread_multiple", options.spreadMultiple}, {"min_samples", options.minSamples},
                        {"judge_host_copies", options.judgeHostCopies}}}};
 }

@@ -28,6 +28,8 @@ struct CompareOptions {
   double alpha = 0.01;          // family-wise false-alarm rate, split over the compared names
   double minEffect = 0.02;      // smallest relative median change worth a verdict
   double spreadMultiple = 2.0;  // ...and at least this many baseline spreads (robust, relative)
+  double minEffectMs = 0.001;   // ...and at least this absolute change: microsecond passes shift by
+                                // a fraction of a microsecond between processes (compare_README.md)
   size_t minSamples = 5;        // per side; fewer cannot reach significance at useful alpha
   bool judgeHostCopies = false; // host copies vary with host memory placement from process to process
 };
@@ -40,7 +42,7 @@ struct PassComparison {
   size_t baselineCount = 0, newCount = 0;
   double baselineMedian = 0, newMedian = 0;
   double change = 0;          // (new - baseline) / baseline median
-  double threshold = 0;       // minimum relative change that counts for this name
+  double threshold = 0;       // minimum relative change that counts for this name (all three floors)
   double baselineSpread = 0;  // robust spread / median of the baseline
   double pValue = 1;          // Mann-Whitney U, two-sided
   double alpha = 0;           // per-name level after the Bonferroni split

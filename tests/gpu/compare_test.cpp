@@ -117,6 +117,23 @@ TEST(Compare, SignificantButTinyChangeIsSame) {
   EXPECT_EQ(c.passes[0].verdict, Verdict::Same);
 }
 
+TEST(Compare, SubMicrosecondShiftOfAMicrosecondPassIsSame) {
+  // The H100 case of compare_README.md: a 7.6 us pass, 0.1 % spread, 2.5 % (0.19 us) slower.
+  std::mt19937 rng(17);
+  TimingSamples base{{"temporal", noisyTimes(rng, 0.0076, 20, 0.001)}};
+  TimingSamples shifted{{"temporal", noisyTimes(rng, 0.0076 * 1.025, 20, 0.001)}};
+  auto c = compareTimings(base, shifted, CompareOptions{});
+  EXPECT_LT(c.passes[0].pValue, 1e-4);
+  EXPECT_NEAR(c.passes[0].threshold, 0.001 / c.passes[0].baselineMedian, 1e-12);
+  EXPECT_EQ(c.passes[0].verdict, Verdict::Same);
+  CompareOptions noFloor;
+  noFloor.minEffectMs = 0;
+  EXPECT_EQ(compareTimings(base, shifted, noFloor).passes[0].verdict, Verdict::Slower);
+  // Several microseconds still count: one extra GTAO slice on a 9 us pass adds about 3 us.
+  TimingSamples slice{{"temporal", noisyTimes(rng, 0.0076 * 1.4, 20, 0.001)}};
+  EXPECT_EQ(compareTimings(base, slice, CompareOptions{}).passes[0].verdict, Verdict::Slower);
+}
+
 TEST(Compare, ThresholdGrowsWithTheBaselineSpread) {
   std::mt19937 rng(11);
   auto c = compareTimings(twoPasses(rng, 1.0, 50, 0.05), twoPasses(rng, 1.0, 50, 0.05), CompareOptions{});
