@@ -170,4 +170,11 @@ bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
+AoSettings gtaoOnly() {
+  AoSettings s;
+  s.spatial = 0;
+  s.temporal = 0;
+  return s;
+}
+
 }  // namespace aor::test

@@ -52,4 +52,7 @@ CommandResult runAoreplay(const std::string& arguments, const std::string& envir
 
 bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b);
 
+// Default settings without the spatial and temporal passes: the read-back is GTAO's own output.
+AoSettings gtaoOnly();
+
 }  // namespace aor::test

@@ -19,9 +19,7 @@ namespace {
 
 // No denoiser: the output is GTAO's half-resolution image through the `upsample` pass alone.
 AoSettings halfResolutionGtaoOnly() {
-  AoSettings s;
-  s.spatial = 0;
-  s.temporal = 0;
+  AoSettings s = gtaoOnly();
   s.halfRes = 1;
   return s;
 }

@@ -16,13 +16,6 @@
 namespace aor::test {
 namespace {
 
-AoSettings gtaoOnly() {
-  AoSettings s;
-  s.spatial = 0;
-  s.temporal = 0;
-  return s;
-}
-
 TEST(Replay, SameCaptureAndSettingsGiveBitIdenticalOutputs) {
   auto capture = generatedCapture("boxes", "orbit", 96, 54, 4);
   AoSettings settings;
