@@ -43,10 +43,11 @@ vec2 neighbourhoodRange(ivec2 pixel, float centre) {
   return range;
 }
 
-// The half-resolution AO at a full-resolution pixel (half_res=1), and through `range` the
-// visibility range of the four texels it blends, which layer 3 clamps history to (they cover the
-// pixel's 3x3 neighbourhood and more). A pixel GTAO evaluated (pixel 2t) gets its texel as is.
-vec4 upsampledCurrent(ivec2 pixel, out vec2 range) {
+// The half-resolution AO at a full-resolution pixel at distance `dist` (half_res=1), and through
+// `range` the visibility range of the four texels it blends, which layer 3 clamps history to (they
+// cover the pixel's 3x3 neighbourhood and more). A pixel GTAO evaluated (pixel 2t) gets its texel
+// as is.
+vec4 upsampledCurrent(ivec2 pixel, float dist, out vec2 range) {
   ivec2 base = pixel / 2;
   ivec2 last = reducedSize(pc.size, 2) - 1;
   vec4 texels[4];
@@ -55,10 +56,9 @@ vec4 upsampledCurrent(ivec2 pixel, out vec2 range) {
     ivec2 texel = min(base + ivec2(i & 1, i >> 1), last);
     texels[i] = imageLoad(aoCurrent, texel);
     texelDistances[i] = imageLoad(viewDistance, texel * 2).r;
+    float v = visibilityOf(texels[i]);
+    range = i == 0 ? vec2(v) : vec2(min(range.x, v), max(range.y, v));
   }
-  range = vec2(min(min(visibilityOf(texels[0]), visibilityOf(texels[1])), min(visibilityOf(texels[2]), visibilityOf(texels[3]))),
-               max(max(visibilityOf(texels[0]), visibilityOf(texels[1])), max(visibilityOf(texels[2]), visibilityOf(texels[3]))));
-  float dist = imageLoad(viewDistance, pixel).r;
   if (pixel == base * 2) return texels[0];
   if (!(dist > 0.0)) return kBent ? vec4(0.0, 0.0, 1.0, 1.0) : vec4(1.0);  // sky: what GTAO writes there
   vec4 w = upsampleWeights(vec2(pixel - base * 2) * 0.5, dist, texelDistances);
@@ -72,8 +72,7 @@ vec4 upsampledCurrent(ivec2 pixel, out vec2 range) {
 // previous frame, or another surface there. It returns early, so that a GPU skips the history
 // and neighbourhood reads of those pixels, and main() stores once (on lavapipe every imageStore
 // in a shader costs a full store, whichever branch it is in).
-vec4 temporalPixel(ivec2 pixel, vec4 current, vec2 upsampledRange) {
-  float dist = imageLoad(viewDistance, pixel).r;
+vec4 temporalPixel(ivec2 pixel, float dist, vec4 current, vec2 upsampledRange) {
   vec3 view = viewPositionFromNdc(pixelToNdc(vec2(pixel), pc.invSize), dist, pc.ndcToViewMul, pc.ndcToViewAdd);
   vec3 previousView = (pc.viewToPreviousView * vec4(view, 1.0)).xyz;
   float expected = -previousView.z;
@@ -101,8 +100,9 @@ vec4 temporalPixel(ivec2 pixel, vec4 current, vec2 upsampledRange) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
+  float dist = imageLoad(viewDistance, pixel).r;  // read once, for the upsample and the reprojection
   vec2 upsampledRange = vec2(0.0);
-  vec4 current = kHalfResolution ? upsampledCurrent(pixel, upsampledRange) : imageLoad(aoCurrent, pixel);
+  vec4 current = kHalfResolution ? upsampledCurrent(pixel, dist, upsampledRange) : imageLoad(aoCurrent, pixel);
   // No history must leave the current value bit for bit.
-  imageStore(aoOut, pixel, kHasHistory ? temporalPixel(pixel, current, upsampledRange) : current);
+  imageStore(aoOut, pixel, kHasHistory ? temporalPixel(pixel, dist, current, upsampledRange) : current);
 }
