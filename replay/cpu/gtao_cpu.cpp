@@ -46,7 +46,7 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Ao
   shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
                              settings.thin > 0.0f, &distance, &normals};
   // At half resolution texel t is pixel 2t with the texel's noise, as gtao.comp's main() does.
-  int divisor = settings.halfRes ? 2 : 1;
+  int divisor = aoResolutionDivisor(settings);
   glm::ivec2 size = aoWorkingSize(camera, settings);
   return computeAoImage<float>(size.x, size.y, settings.bent != 0, [&](glm::ivec2 t, glm::vec3& bent) {
     return pixel.gtaoPixelWithNoise(t * divisor, shader::gtaoNoise(t, camera.frameIndex), bent);

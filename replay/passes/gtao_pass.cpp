@@ -25,9 +25,10 @@ shader::GtaoConstants gtaoConstants(const FrameCamera& camera, const AoSettings&
   return c;
 }
 
+int aoResolutionDivisor(const AoSettings& settings) { return settings.halfRes ? 2 : 1; }
+
 glm::ivec2 aoWorkingSize(const FrameCamera& camera, const AoSettings& settings) {
-  glm::ivec2 size(camera.width, camera.height);
-  return settings.halfRes ? shader::reducedSize(size, 2) : size;
+  return shader::reducedSize(glm::ivec2(camera.width, camera.height), aoResolutionDivisor(settings));
 }
 
 graph::ResourceId addGtaoPass(graph::RenderGraph& graph, PassPipelines& pipelines, const FrameCamera& camera,

@@ -49,8 +49,10 @@ struct FrameCamera {
   int width = 0, height = 0;
   uint32_t frameIndex = 0;
 };
-// Size of the images GTAO and the spatial blur write: the frame's, or half of it (rounded up) with
-// half_res=1. The temporal pass (or `upsample`) brings the AO back to the frame's size.
+// GTAO and the spatial blur work on one texel per divisor x divisor pixels: 1, or 2 with half_res=1.
+int aoResolutionDivisor(const AoSettings& settings);
+// Size of the images they write: shader::reducedSize of the frame's by that divisor. The temporal
+// pass (or `upsample`) brings the AO back to the frame's size.
 glm::ivec2 aoWorkingSize(const FrameCamera& camera, const AoSettings& settings);
 
 // Copies host staging buffers into the G-buffer images (normals may be kNoResource).
