@@ -31,18 +31,24 @@ std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const Rep
   return passes;
 }
 
-double pipelineTotalMs(const std::vector<std::pair<std::string, double>>& passMedians) {
+namespace {
+
+// The medians of the host copies (hostCopies) or of the compute passes, summed.
+double sumOfMedians(const std::vector<std::pair<std::string, double>>& passMedians, bool hostCopies) {
   double total = 0;
   for (const auto& [name, median] : passMedians)
-    if (!isHostCopyPass(name)) total += median;
+    if (isHostCopyPass(name) == hostCopies) total += median;
   return total;
 }
 
+}  // namespace
+
+double pipelineTotalMs(const std::vector<std::pair<std::string, double>>& passMedians) {
+  return sumOfMedians(passMedians, false);
+}
+
 double hostCopiesTotalMs(const std::vector<std::pair<std::string, double>>& passMedians) {
-  double total = 0;
-  for (const auto& [name, median] : passMedians)
-    if (isHostCopyPass(name)) total += median;
-  return total;
+  return sumOfMedians(passMedians, true);
 }
 
 void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
