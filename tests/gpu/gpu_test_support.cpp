@@ -177,4 +177,10 @@ AoSettings gtaoOnly() {
   return s;
 }
 
+int cutFrame(const Capture& capture) {
+  for (size_t i = 1; i < capture.frames.size(); ++i)
+    if (capture.frames[i].cut) return int(i);
+  return -1;
+}
+
 }  // namespace aor::test

@@ -55,4 +55,7 @@ bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b);
 // Default settings without the spatial and temporal passes: the read-back is GTAO's own output.
 AoSettings gtaoOnly();
 
+// Index of the first frame after frame 0 marked `cut`, -1 when none is.
+int cutFrame(const Capture& capture);
+
 }  // namespace aor::test

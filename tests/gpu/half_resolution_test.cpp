@@ -130,10 +130,8 @@ TEST(HalfResolution, SkyPixelsGetWhatGtaoWritesForSky) {
 
 TEST(HalfResolution, ReplayIsBitIdenticalAndAFrameAfterACutEqualsItAlone) {
   auto capture = generatedCapture("boxes", "cut", 64, 36, 6);
-  int k = -1;
   Capture c = loadCapture(capture);
-  for (size_t i = 1; i < c.frames.size(); ++i)
-    if (c.frames[i].cut) k = int(i);
+  int k = cutFrame(c);
   ASSERT_GT(k, 0);
   AoSettings settings;
   settings.halfRes = 1;

@@ -53,12 +53,6 @@ TEST(Replay, HistoryIsValidAfterTheFirstFrameAndResetAtACut) {
   EXPECT_EQ(cuts, 1);
 }
 
-int cutFrame(const Capture& c) {
-  for (size_t i = 1; i < c.frames.size(); ++i)
-    if (c.frames[i].cut) return int(i);
-  return -1;
-}
-
 TEST(Replay, FrameAfterACutEqualsThatFrameReplayedAlone) {
   auto capture = generatedCapture("boxes", "cut", 64, 36, 6);
   int k = cutFrame(loadCapture(capture));

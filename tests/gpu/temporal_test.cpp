@@ -68,12 +68,6 @@ TEST(Temporal, StaticNoiseFallsWithTheSpatialAndAgainWithTheTemporalPass) {
   EXPECT_LT(noiseSpatial.p99, noiseRaw.p99);
 }
 
-int firstCut(const Capture& c) {
-  for (size_t i = 1; i < c.frames.size(); ++i)
-    if (c.frames[i].cut) return int(i);
-  return -1;
-}
-
 // The shipped cut capture with the cut flag removed: the jump must be caught by the camera limits.
 fs::path unmarkedCutCapture() {
   fs::path dir = scratchDir("temporal-unmarked-cut");
@@ -88,7 +82,7 @@ fs::path unmarkedCutCapture() {
 
 TEST(Temporal, FrameAfterTheShippedCutEqualsAReplayStartingThere) {
   auto path = shipped("boxes-cut");
-  int k = firstCut(loadCapture(path));
+  int k = cutFrame(loadCapture(path));
   ASSERT_GT(k, 1);
   AoSettings settings;
   auto full = replay(path, settings);
@@ -119,8 +113,8 @@ std::pair<ReplayResult, std::vector<float>> replayWithJumpLimits(const fs::path&
 
 TEST(Temporal, AnUnmarkedCameraJumpBeyondTheLimitResetsHistory) {
   auto path = unmarkedCutCapture();
-  int k = firstCut(loadCapture(shipped("boxes-cut")));
-  ASSERT_EQ(firstCut(loadCapture(path)), -1);
+  int k = cutFrame(loadCapture(shipped("boxes-cut")));
+  ASSERT_EQ(cutFrame(loadCapture(path)), -1);
   AoSettings settings;
   settings.temporal = 0.98f;  // no rejection layer can hide a leak completely at this weight
   // The jump turns the camera 22 degrees; the orbits around it turn under 1.5 per frame.
