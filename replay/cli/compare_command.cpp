@@ -61,7 +61,7 @@ void registerCompareCommand(CLI::App& app) {
                   "smallest absolute median change that counts, in milliseconds (default 0.001)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--spread-multiple", args->options.spreadMultiple,
-                  "the change must also exceed this many baseline spreads (robust, relative)")
+                  "the change must also exceed this many spreads (robust, relative) of the noisier run")
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_flag("--judge-host-copies", args->options.judgeHostCopies,
                 "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");

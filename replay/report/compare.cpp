@@ -164,7 +164,9 @@ Comparison compareTimings(const TimingSamples& baseline, const TimingSamples& ca
     p.newMedian = medianOf(other->samples);
     p.change = (p.newMedian - p.baselineMedian) / p.baselineMedian;
     p.baselineSpread = robustSpread(base) / p.baselineMedian;
-    p.threshold = std::max({options.minEffect, options.spreadMultiple * p.baselineSpread,
+    p.newSpread = robustSpread(other->samples) / p.newMedian;
+    // Either run may be the disturbed one (compare_README.md, rule 4), so the noisier sets the bar.
+    p.threshold = std::max({options.minEffect, options.spreadMultiple * std::max(p.baselineSpread, p.newSpread),
                             options.minEffectMs / p.baselineMedian});
     p.pValue = mannWhitneyU(base, other->samples).pValue;
     p.alpha = options.alpha / double(std::max<size_t>(judgedCount, 1));
@@ -200,7 +202,8 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
   for (const auto& p : c.passes)
     passes.push_back({{"name", p.name}, {"verdict", verdictText(p.verdict)}, {"baseline_median_ms", p.baselineMedian},
                       {"judged", p.judged}, {"new_median_ms", p.newMedian}, {"change", p.change}, {"threshold", p.threshold},
-                      {"baseline_relative_spread", p.baselineSpread}, {"p_value", p.pValue}, {"alpha", p.alpha},
+                      {"baseline_relative_spread", p.baselineSpread},
+                      {"new_relative_spread", p.newSpread}, {"p_value", p.pValue}, {"alpha", p.alpha},
                       {"baseline_samples", p.baselineCount}, {"new_samples", p.newCount}});
   return {{"passes", passes},
           {"only_in_baseline", c.onlyInBaseline},

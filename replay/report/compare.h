@@ -27,7 +27,7 @@ TimingSamples loadTimingSamples(const std::filesystem::path& path);
 struct CompareOptions {
   double alpha = 0.01;          // family-wise false-alarm rate, split over the compared names
   double minEffect = 0.02;      // smallest relative median change worth a verdict
-  double spreadMultiple = 2.0;  // ...and at least this many baseline spreads (robust, relative)
+  double spreadMultiple = 2.0;  // ...and at least this many spreads (robust, relative) of the noisier run
   double minEffectMs = 0.001;   // ...and at least this absolute change: microsecond passes shift by
                                 // a fraction of a microsecond between processes (compare_README.md)
   size_t minSamples = 5;        // per side; fewer cannot reach significance at useful alpha
@@ -44,6 +44,7 @@ struct PassComparison {
   double change = 0;          // (new - baseline) / baseline median
   double threshold = 0;       // minimum relative change that counts for this name (all three floors)
   double baselineSpread = 0;  // robust spread / median of the baseline
+  double newSpread = 0;       // same, of the new run: a disturbed run spreads, and its median moves
   double pValue = 1;          // Mann-Whitney U, two-sided
   double alpha = 0;           // per-name level after the Bonferroni split
   Verdict verdict = Verdict::Unknown;
