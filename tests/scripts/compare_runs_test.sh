@@ -3,7 +3,7 @@
 # --set the extra run args choose. Runs the script against a stand-in `aoreplay` (no GPU, no
 # timing): `run` records its arguments and writes a report.json whose settings.slices follows
 # --preset (low 1, medium 2, high 3, ultra 9, as replay/pipeline/settings.cpp) and the last
-# --set slices=N; `compare` writes a `same` verdict.
+# --set slices=N; `compare` writes a `same` verdict. Also: REJUDGE=1 replays nothing.
 #   bash tests/scripts/compare_runs_test.sh SCRATCH_DIR
 set -euo pipefail
 script="$(cd "$(dirname "$0")/../.." && pwd)/bench/compare_runs.sh"
@@ -57,4 +57,13 @@ check preset_low 1 --preset low
 check preset_ultra 9 --preset ultra
 check set_slices 6 --set slices=6
 check preset_and_set 2 --preset ultra --set slices=2
+
+# REJUDGE=1 judges the runs already there and replays nothing.
+rm "$scratch/default/"[abs]1/args.txt
+if log=$(REJUDGE=1 bash "$script" "$scratch/build" "$scratch/default" 2 2>&1) &&
+   grep -q "A vs slices=4 exit" <<< "$log" && ! ls "$scratch/default/"[abs]1/args.txt >/dev/null 2>&1; then
+  echo "ok rejudge: judged again, nothing replayed"
+else
+  echo "FAIL rejudge: $log"; failures=$((failures + 1))
+fi
 [ "$failures" -eq 0 ]
