@@ -154,6 +154,17 @@ ReplayedFrames replay(const fs::path& capturePath, const AoSettings& settings, i
   return out;
 }
 
+ReplayedFrames replayWithSettings(const fs::path& capturePath, const std::string& technique,
+                                  const std::vector<std::string>& assignments, int begin, int end) {
+  Capture capture = loadCapture(capturePath);
+  bool radiusGiven = false;
+  for (const auto& a : assignments) radiusGiven |= a.rfind("radius=", 0) == 0;
+  AoSettings settings = settingsForCapture(capture, AoSettings{}, radiusGiven);
+  for (const auto& a : assignments) applySetting(settings, a);
+  applyTechnique(settings, parseTechnique(technique));
+  return replay(capturePath, settings, begin, end);
+}
+
 CommandResult runAoreplay(const std::string& arguments, const std::string& environment) {
   std::string command = fmt::format("{} {} {} 2>&1", environment, AOR_EXE, arguments);
   CommandResult result;

@@ -42,6 +42,10 @@ struct ReplayedFrames {
 };
 ReplayedFrames replay(const std::filesystem::path& capture, const AoSettings& settings, int begin = 0, int end = -1,
                       bool keepHistoryOnCut = false);
+// As `aoreplay run CAPTURE --technique T --set A --set B ... --frames begin:end` resolves settings:
+// the technique's default preset, the capture's scene.ao_radius, then the assignments in order.
+ReplayedFrames replayWithSettings(const std::filesystem::path& capture, const std::string& technique,
+                                  const std::vector<std::string>& assignments, int begin = 0, int end = -1);
 
 struct CommandResult {
   int exitCode = -1;
