@@ -23,6 +23,15 @@ std::string formatText(VkFormat format) {
   return name;
 }
 
+// "1920x1080 R16_SFLOAT", with ", 5 mips" / ", 4 layers" where there are more than one; "buffer".
+std::string shapeText(const ResourceDecl& decl) {
+  if (decl.isBuffer()) return "buffer";
+  std::string text = fmt::format("{}x{} {}", decl.desc.width, decl.desc.height, formatText(decl.desc.format));
+  if (decl.desc.mipLevels > 1) text += fmt::format(", {} mips", decl.desc.mipLevels);
+  if (decl.desc.arrayLayers > 1) text += fmt::format(", {} layers", decl.desc.arrayLayers);
+  return text;
+}
+
 // Graphviz double-quoted string with escapes; `\n` in the input becomes a centred line break.
 std::string dotQuote(const std::string& text) {
   std::string out = "\"";
@@ -67,18 +76,22 @@ std::string describe(const RenderGraph& graph, const CompiledGraph& compiled) {
     const PassDecl& pass = passes[cp.pass];
     out += fmt::format("  [{}] {}{}\n", i, pass.name, pass.sideEffect ? " (side effect)" : "");
     std::string reads, writes;
-    for (const auto& [id, access] : pass.accesses) {
-      std::string& list = isWrite(access) ? writes : reads;
+    for (size_t a = 0; a < pass.accesses.size(); ++a) {
+      const AccessDecl& access = pass.accesses[a];
+      if (!cp.accessLive[a]) continue;  // a writeIfRead nobody reads: not done
+      std::string& list = isWrite(access.access) ? writes : reads;
       if (!list.empty()) list += ", ";
-      list += fmt::format("{} ({})", resources[id].name, accessName(access));
+      const ResourceDecl& res = resources[access.resource];
+      list += fmt::format("{}{} ({})", res.name, rangeText(res, access.range), accessName(access.access));
     }
     if (!reads.empty()) out += fmt::format("      reads:  {}\n", reads);
     if (!writes.empty()) out += fmt::format("      writes: {}\n", writes);
     for (const Barrier& b : cp.barriersBefore) {
-      out += fmt::format("      barrier {}: {} -> {}, {} -> {} ({} -> {})\n",
-                         resources[b.resource].name, layoutName(b.before.layout),
-                         layoutName(b.after.layout), stageNames(b.before.stage),
-                         stageNames(b.after.stage), accessNames(b.before.access),
+      const ResourceDecl& res = resources[b.resource];
+      std::string layouts = res.isBuffer() ? "buffer" : fmt::format("{} -> {}", layoutName(b.before.layout),
+                                                                   layoutName(b.after.layout));
+      out += fmt::format("      barrier {}{}: {}, {} -> {} ({} -> {})\n", res.name, rangeText(res, b.range), layouts,
+                         stageNames(b.before.stage), stageNames(b.after.stage), accessNames(b.before.access),
                          accessNames(b.after.access));
     }
   }
@@ -92,9 +105,7 @@ std::string describe(const RenderGraph& graph, const CompiledGraph& compiled) {
   for (ResourceId id = 0; id < resources.size(); ++id) {
     const ResourceDecl& decl = resources[id];
     const CompiledResource& res = compiled.resources[id];
-    out += fmt::format("  {} [{}] {}x{} {}, {}", decl.name, kindName(decl.kind), decl.desc.width,
-                       decl.desc.height, formatText(decl.desc.format),
-                       bytesText(imageBytes(decl.desc)));
+    out += fmt::format("  {} [{}] {}, {}", decl.name, kindName(decl.kind), shapeText(decl), bytesText(decl.bytes()));
     if (!res.used) {
       out += ": not allocated (unused)\n";
       continue;
@@ -156,8 +167,7 @@ std::string toDot(const RenderGraph& graph, const CompiledGraph& compiled) {
   for (ResourceId id = 0; id < resources.size(); ++id) {
     const ResourceDecl& decl = resources[id];
     const CompiledResource& res = compiled.resources[id];
-    std::string label = fmt::format("{}\n{}x{} {}", decl.name, decl.desc.width, decl.desc.height,
-                                    formatText(decl.desc.format));
+    std::string label = fmt::format("{}\n{}", decl.name, shapeText(decl));
     std::string style;
     if (!res.used) {
       label += "\nunused";
@@ -174,12 +184,13 @@ std::string toDot(const RenderGraph& graph, const CompiledGraph& compiled) {
   }
   for (size_t p = 0; p < passes.size(); ++p) {
     const char* extra = culledBy[p] ? ", style=dashed, color=grey, fontcolor=grey" : "";
-    for (const auto& [id, access] : passes[p].accesses) {
-      if (id >= resources.size()) continue;
-      if (isWrite(access)) {
-        out += fmt::format("  p{} -> r{} [label={}{}];\n", p, id, dotQuote(accessName(access)), extra);
+    for (const AccessDecl& a : passes[p].accesses) {
+      if (a.resource >= resources.size()) continue;
+      std::string label = dotQuote(accessName(a.access) + rangeText(resources[a.resource], a.range));
+      if (isWrite(a.access)) {
+        out += fmt::format("  p{} -> r{} [label={}{}];\n", p, a.resource, label, extra);
       } else {
-        out += fmt::format("  r{} -> p{} [label={}{}];\n", id, p, dotQuote(accessName(access)), extra);
+        out += fmt::format("  r{} -> p{} [label={}{}];\n", a.resource, p, label, extra);
       }
     }
   }

@@ -1,7 +1,10 @@
 // Formats, access → synchronisation state mapping and the names used in reports.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "graph/render_graph.h"
 
@@ -96,7 +99,10 @@ uint32_t bytesPerPixel(VkFormat format) {
 }
 
 uint64_t imageBytes(const ImageDesc& desc) {
-  return uint64_t{desc.width} * uint64_t{desc.height} * bytesPerPixel(desc.format);
+  uint64_t texels = 0;
+  for (uint32_t m = 0; m < desc.mipLevels; ++m)
+    texels += uint64_t{std::max(1u, desc.width >> m)} * uint64_t{std::max(1u, desc.height >> m)};
+  return texels * desc.arrayLayers * bytesPerPixel(desc.format);
 }
 
 const char* formatName(VkFormat format) {
@@ -125,6 +131,10 @@ ImageState requiredState(Access access) {
     case Access::ClearWrite:
       return {VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+    case Access::UniformRead:
+      return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+    case Access::IndirectRead:
+      return {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
   }
   return {};
 }
@@ -133,12 +143,13 @@ bool isWrite(Access access) {
   return access == Access::StorageWrite || access == Access::TransferWrite || access == Access::ClearWrite;
 }
 
-ImageState requiredState(const PassDecl& pass, ResourceId id) {
+ImageState requiredState(const PassDecl& pass, ResourceId id, Subresources range) {
   ImageState merged;
   bool any = false;
-  for (const auto& [resource, access] : pass.accesses) {
-    if (resource != id) continue;
-    const ImageState need = requiredState(access);
+  for (const auto& a : pass.accesses) {
+    if (a.resource != id) continue;
+    if (!(range == Subresources{}) && !overlaps(a.range, range)) continue;
+    ImageState need = requiredState(a.access);
     merged.stage |= need.stage;
     merged.access |= need.access;
     if (!any) {
@@ -159,8 +170,20 @@ const char* accessName(Access access) {
     case Access::TransferRead: return "transfer read";
     case Access::TransferWrite: return "transfer write";
     case Access::ClearWrite: return "clear";
+    case Access::UniformRead: return "uniform read";
+    case Access::IndirectRead: return "indirect read";
   }
   return "?";
+}
+
+std::string rangeText(const ResourceDecl& decl, const Subresources& range) {
+  if (decl.isBuffer() || (decl.desc.mipLevels == 1 && decl.desc.arrayLayers == 1)) return "";
+  auto span = [](const char* what, uint32_t base, uint32_t count, uint32_t total) -> std::string {
+    if (total == 1 || (base == 0 && count == total)) return "";
+    return count == 1 ? fmt::format(" {} {}", what, base) : fmt::format(" {}s {}-{}", what, base, base + count - 1);
+  };
+  return span("mip", range.baseMip, range.mipCount, decl.desc.mipLevels) +
+         span("layer", range.baseLayer, range.layerCount, decl.desc.arrayLayers);
 }
 
 const char* kindName(ResourceKind kind) {
@@ -191,7 +214,8 @@ const char* layoutName(VkImageLayout layout) {
 }
 
 std::string stageNames(VkPipelineStageFlags2 stages) {
-  static const std::array<std::pair<VkPipelineStageFlags2, const char*>, 13> kNames = {{
+  static const std::array<std::pair<VkPipelineStageFlags2, const char*>, 14> kNames = {{
+      {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, "DRAW_INDIRECT"},
       {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, "ALL_COMMANDS"},
       {VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, "TOP_OF_PIPE"},
       {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, "COMPUTE_SHADER"},
@@ -210,7 +234,8 @@ std::string stageNames(VkPipelineStageFlags2 stages) {
 }
 
 std::string accessNames(VkAccessFlags2 access) {
-  static const std::array<std::pair<VkAccessFlags2, const char*>, 14> kNames = {{
+  static const std::array<std::pair<VkAccessFlags2, const char*>, 15> kNames = {{
+      {VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, "INDIRECT_COMMAND_READ"},
       {VK_ACCESS_2_MEMORY_READ_BIT, "MEMORY_READ"},
       {VK_ACCESS_2_MEMORY_WRITE_BIT, "MEMORY_WRITE"},
       {VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, "SHADER_SAMPLED_READ"},

@@ -1,9 +1,10 @@
 #pragma once
-// Frame graph in the Frostbite/Filament shape: passes declare the images they read and write in a
-// setup step; compile() culls passes whose outputs nothing consumes, computes lifetimes, assigns
-// transients to shared memory slots (aliasing) and derives every barrier and layout transition from
-// the declared accesses. Nothing here touches a GPU, so the graph is unit-tested without one;
-// graph/executor (in aor_gpu) records a compiled graph into a command buffer.
+// Frame graph in the Frostbite/Filament shape: passes declare the images and buffers they read and
+// write in a setup step; compile() culls passes whose outputs nothing consumes, computes lifetimes,
+// assigns transients to shared memory slots (aliasing) and derives every barrier and layout
+// transition from the declared accesses, per mip level and array layer. Nothing here touches a
+// GPU, so the graph is unit-tested without one; the graph's runtime beside it (executor.h,
+// physical_resources.h, pass_context.h, in aor_gpu) records a compiled graph into a command buffer.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -20,58 +21,103 @@ struct ImageDesc {
   uint32_t width = 0;
   uint32_t height = 0;
   VkFormat format = VK_FORMAT_UNDEFINED;
+  uint32_t mipLevels = 1;    // level m is max(1, width >> m) x max(1, height >> m)
+  uint32_t arrayLayers = 1;
+};
+struct BufferDesc {
+  uint64_t bytes = 0;
 };
 uint32_t bytesPerPixel(VkFormat format);  // formats the passes use; 0 for unknown
-uint64_t imageBytes(const ImageDesc& desc);
+uint64_t imageBytes(const ImageDesc& desc);  // every mip level of every layer
 
 enum class ResourceKind : uint8_t {
   Transient,  // lives within one execution; may share memory with others whose lifetimes do not overlap
   Imported,   // owned outside the graph (uploaded inputs, read-back targets); never aliased
   History,    // one half of a history pair: persists across frames, never aliased
 };
+enum class ResourceType : uint8_t { Image, Buffer };
 
-// ClearWrite is vkCmdClearColorImage: a transfer write in its own pipeline stage (CLEAR, not COPY).
-enum class Access : uint8_t { SampledRead, StorageRead, StorageWrite, TransferRead, TransferWrite, ClearWrite };
+// ClearWrite is vkCmdClearColorImage or vkCmdFillBuffer: a transfer write in the CLEAR stage.
+// StorageRead/StorageWrite are storage images or storage buffers, by the resource's type;
+// UniformRead and IndirectRead are for buffers only, SampledRead for images only.
+enum class Access : uint8_t {
+  SampledRead, StorageRead, StorageWrite, TransferRead, TransferWrite, ClearWrite, UniformRead, IndirectRead
+};
 
-// Synchronisation state of an image: what last touched it and in which layout it was left.
+// Synchronisation state of an image subresource or a buffer: what last touched it and, for
+// images, in which layout it was left (buffers stay UNDEFINED).
 struct ImageState {
   VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_NONE;
   VkAccessFlags2 access = VK_ACCESS_2_NONE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
-// Stage, access mask and layout that one declared access needs; writes() tells hazards apart.
+using ResourceState = ImageState;
+// Stage, access mask and layout that one declared access needs (of an image; buffers ignore the
+// layout); writes() tells hazards apart.
 ImageState requiredState(Access access);
 bool isWrite(Access access);
 
-struct PassContext;  // defined by the executor: command buffer and physical images
+// A range of mip levels and array layers; the defaults mean the whole image. kAll counts are
+// "to the last level (layer)"; resolve() turns them into numbers for an image.
+struct Subresources {
+  static constexpr uint32_t kAll = ~0u;
+  uint32_t baseMip = 0, mipCount = kAll;
+  uint32_t baseLayer = 0, layerCount = kAll;
+  static Subresources mip(uint32_t level) { return {level, 1, 0, kAll}; }
+  static Subresources layer(uint32_t index) { return {0, kAll, index, 1}; }
+  Subresources resolve(const ImageDesc& desc) const;
+  bool operator==(const Subresources&) const = default;
+};
+
+struct PassContext;  // defined by the runtime: command buffer and physical resources
 
 class PassBuilder {
  public:
-  void read(ResourceId id, Access access = Access::SampledRead);
-  void write(ResourceId id, Access access = Access::StorageWrite);
+  void read(ResourceId id, Access access = Access::SampledRead, Subresources range = {});
+  void write(ResourceId id, Access access = Access::StorageWrite, Subresources range = {});
+  // A write that is dropped (and its resource left unallocated) when no live pass reads it: a pass
+  // that fills several inputs at once (the upload of every capture input) writes only those read.
+  // The pass's execute callback checks PassContext::has() before touching it.
+  void writeIfRead(ResourceId id, Access access = Access::StorageWrite, Subresources range = {});
   // A pass with side effects (e.g. read-back to the host) is a root: never culled.
   void sideEffect();
 
  private:
   friend class RenderGraph;
   PassBuilder(class RenderGraph& graph, uint32_t pass) : graph_(graph), pass_(pass) {}
-  void declare(ResourceId id, Access access, bool asWrite);  // read() and write(), checked alike
+  void declare(ResourceId id, Access access, Subresources range, bool asWrite, bool ifRead);
   class RenderGraph& graph_;
   uint32_t pass_;
 };
 
 struct ResourceDecl {
   std::string name;
-  ImageDesc desc;
+  ImageDesc desc;           // images
+  BufferDesc buffer;        // buffers
+  ResourceType type = ResourceType::Image;
   ResourceKind kind = ResourceKind::Transient;
-  ImageState initialState;  // Imported/History: state left by earlier work; Transient: UNDEFINED
+  ImageState initialState;  // Imported/History: state left by earlier work (every subresource); Transient: UNDEFINED
+  std::vector<ImageState> initialStates;  // when not empty: per subresource (layer * mips + mip), overriding initialState
   std::string historyBase;  // History: the pair's name ("ao_history"; `name` adds .previous/.current)
   bool historyCurrent = false;  // History: the image this frame writes
+  bool isBuffer() const { return type == ResourceType::Buffer; }
+  uint32_t subresourceCount() const { return isBuffer() ? 1 : desc.mipLevels * desc.arrayLayers; }
+  uint64_t bytes() const { return isBuffer() ? buffer.bytes : imageBytes(desc); }
+  const ImageState& initialStateOf(uint32_t subresource) const {
+    return initialStates.empty() ? initialState : initialStates.at(subresource);
+  }
+};
+
+struct AccessDecl {
+  ResourceId resource = kNoResource;
+  Access access = Access::SampledRead;
+  Subresources range;   // resolved against the image (whole buffer for buffers)
+  bool ifRead = false;  // declared with writeIfRead
 };
 
 struct PassDecl {
   std::string name;
-  std::vector<std::pair<ResourceId, Access>> accesses;  // in declaration order
+  std::vector<AccessDecl> accesses;  // in declaration order
   bool sideEffect = false;
   std::function<void(PassContext&)> execute;
 };
@@ -83,13 +129,15 @@ struct HistoryPair {
 
 struct Barrier {
   ResourceId resource = kNoResource;
-  ImageState before;  // src stage/access and old layout (UNDEFINED when contents are discarded)
-  ImageState after;   // dst stage/access and new layout
+  ImageState before;    // src stage/access and old layout (UNDEFINED when contents are discarded)
+  ImageState after;     // dst stage/access and new layout
+  Subresources range;   // the mips and layers it covers (resolved; whole buffer for buffers)
 };
 
 struct CompiledPass {
   uint32_t pass = 0;                    // index into RenderGraph::passes()
   std::vector<Barrier> barriersBefore;  // recorded just before the pass
+  std::vector<bool> accessLive;         // per PassDecl::accesses entry: false for a dropped writeIfRead
 };
 
 struct CulledPass {
@@ -102,12 +150,14 @@ struct CompiledResource {
   int firstPass = -1;        // index into CompiledGraph::passes
   int lastPass = -1;
   int memorySlot = -1;       // Transient only: resources with the same slot share memory
-  VkImageUsageFlags usage = 0;  // union over the live accesses
+  VkImageUsageFlags usage = 0;   // images: union over the live accesses
+  VkBufferUsageFlags bufferUsage = 0;  // buffers: likewise
   ImageState finalState;     // state after the last live access (executors carry it to the next frame)
+  std::vector<ImageState> finalStates;  // per subresource (mip-major within each layer: layer * mips + mip)
 };
 
 struct MemorySlot {
-  uint64_t bytes = 0;                  // largest member, by imageBytes()
+  uint64_t bytes = 0;                  // largest member, by ResourceDecl::bytes()
   std::vector<ResourceId> resources;   // members in order of first use; lifetimes never overlap
 };
 
@@ -127,9 +177,14 @@ class RenderGraph {
  public:
   ResourceId createImage(std::string name, ImageDesc desc);
   ResourceId importImage(std::string name, ImageDesc desc, ImageState initialState = {});
+  ResourceId createBuffer(std::string name, BufferDesc desc);
+  ResourceId importBuffer(std::string name, BufferDesc desc, ImageState initialState = {});
   // History images are explicit: `current` always exists; `previous` only when previousValid.
   HistoryPair createHistory(std::string name, ImageDesc desc, bool previousValid,
                             ImageState previousState = {}, ImageState currentState = {});
+  // Per-subresource states left by earlier work, for an imported or history image whose mips or
+  // layers were left differently (layer * mips + mip).
+  void setInitialStates(ResourceId id, std::vector<ImageState> states);
   uint32_t addPass(std::string name, const std::function<void(PassBuilder&)>& setup,
                    std::function<void(PassContext&)> execute = {});
 
@@ -140,6 +195,7 @@ class RenderGraph {
 
  private:
   friend class PassBuilder;
+  ResourceId add(ResourceDecl decl);
   std::vector<ResourceDecl> resources_;
   std::vector<PassDecl> passes_;
 };
@@ -150,17 +206,21 @@ std::string describe(const RenderGraph& graph, const CompiledGraph& compiled);
 std::string toDot(const RenderGraph& graph, const CompiledGraph& compiled);
 const char* formatName(VkFormat format);
 
-// --- Additions beyond the original contract (helpers for the executor and for reports) ---
-// State a pass needs for one resource: the union of requiredState() over the pass's accesses to
-// it. Where those accesses need different layouts (e.g. sampled read + storage write of one image)
-// the layout is GENERAL. This is the layout the executor must put in that pass's descriptors, and
-// the `after` state of any barrier the graph emits for it. {NONE, NONE, UNDEFINED} if untouched.
-ImageState requiredState(const PassDecl& pass, ResourceId id);
+// --- Helpers for the runtime and for reports ---
+// State a pass needs for the subresources `range` of `id`: the union of requiredState() over the
+// pass's live accesses that overlap it. Where those accesses need different layouts (e.g. sampled
+// read + storage write of one image) the layout is GENERAL. This is the layout the runtime must
+// put in that pass's descriptors, and the `after` state of any barrier the graph emits for it.
+// {NONE, NONE, UNDEFINED} if untouched. The range defaults to the whole resource.
+ImageState requiredState(const PassDecl& pass, ResourceId id, Subresources range = {});
+// Whether two resolved ranges share a subresource.
+bool overlaps(const Subresources& a, const Subresources& b);
 const char* accessName(Access access);             // "sampled read", "storage write", ...
 const char* kindName(ResourceKind kind);           // "transient", "imported", "history"
 const char* layoutName(VkImageLayout layout);      // "SHADER_READ_ONLY_OPTIMAL", ...
 std::string stageNames(VkPipelineStageFlags2 stages);  // "COMPUTE_SHADER|COPY", "NONE"
 std::string accessNames(VkAccessFlags2 access);        // "SHADER_SAMPLED_READ", "NONE"
+std::string rangeText(const ResourceDecl& decl, const Subresources& range);  // "" for a whole single-level image
 // Name of the compiled pass at `index` (into CompiledGraph::passes), "-" when out of range.
 std::string passName(const RenderGraph& graph, const CompiledGraph& compiled, int index);
 // The other resources sharing `id`'s memory slot (none when it has no slot).

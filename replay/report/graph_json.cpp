@@ -7,9 +7,18 @@ nlohmann::json graphResourcesJson(const graph::RenderGraph& graph, const graph::
   for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {
     const auto& decl = graph.resources()[id];
     const auto& res = compiled.resources[id];
-    nlohmann::json r{{"name", decl.name}, {"kind", graph::kindName(decl.kind)}, {"width", decl.desc.width},
-                     {"height", decl.desc.height}, {"format", graph::formatName(decl.desc.format)},
-                     {"bytes", graph::imageBytes(decl.desc)}, {"allocated", res.used}};
+    nlohmann::json r{{"name", decl.name}, {"kind", graph::kindName(decl.kind)}, {"bytes", decl.bytes()},
+                     {"allocated", res.used}};
+    if (decl.isBuffer()) {
+      r["type"] = "buffer";
+    } else {
+      r["type"] = "image";
+      r["width"] = decl.desc.width;
+      r["height"] = decl.desc.height;
+      r["format"] = graph::formatName(decl.desc.format);
+      if (decl.desc.mipLevels > 1) r["mip_levels"] = decl.desc.mipLevels;
+      if (decl.desc.arrayLayers > 1) r["array_layers"] = decl.desc.arrayLayers;
+    }
     if (res.used) {
       r["first_pass"] = graph::passName(graph, compiled, res.firstPass);
       r["last_pass"] = graph::passName(graph, compiled, res.lastPass);

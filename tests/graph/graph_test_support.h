@@ -239,10 +239,10 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
   {
     std::vector<int> lastWriter(res.size(), -1);
     for (size_t p = 0; p < passes.size(); ++p) {
-      for (const auto& [id, a] : passes[p].accesses) {
+      for (const auto& [id, a, range_, ifRead_] : passes[p].accesses) {
         if (!isWrite(a)) producers[p].emplace_back(id, lastWriter[id]);
       }
-      for (const auto& [id, a] : passes[p].accesses) {
+      for (const auto& [id, a, range_, ifRead_] : passes[p].accesses) {
         if (isWrite(a)) lastWriter[id] = static_cast<int>(p);
       }
     }
@@ -274,7 +274,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
     EXPECT_FALSE(live[cp.pass]) << "live pass " << passes[cp.pass].name << " was culled";
     EXPECT_FALSE(cp.reason.empty());
     bool writes = false;
-    for (const auto& [id, a] : passes[cp.pass].accesses) {
+    for (const auto& [id, a, range_, ifRead_] : passes[cp.pass].accesses) {
       if (!isWrite(a)) continue;
       writes = true;
       EXPECT_NE(cp.reason.find(res[id].name), std::string::npos)
@@ -292,7 +292,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
   // --- Lifetimes, usage.
   std::vector<std::vector<Op>> ops(res.size());
   for (size_t i = 0; i < c.passes.size(); ++i) {
-    for (const auto& [id, a] : passes[c.passes[i].pass].accesses) {
+    for (const auto& [id, a, range_, ifRead_] : passes[c.passes[i].pass].accesses) {
       const ImageState need = requiredState(a);
       ops[id].push_back(Op{static_cast<int>(i), need.stage, need.access, isWrite(a), need.layout});
     }
@@ -314,7 +314,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
     EXPECT_EQ(r.lastPass, ops[id].back().pass);
     VkImageUsageFlags usage = 0;
     for (const CompiledPass& cp : c.passes) {
-      for (const auto& [rid, a] : passes[cp.pass].accesses) {
+      for (const auto& [rid, a, range_, ifRead_] : passes[cp.pass].accesses) {
         if (rid != id) continue;
         switch (a) {
           case Access::SampledRead: usage |= VK_IMAGE_USAGE_SAMPLED_BIT; break;
@@ -323,6 +323,8 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
           case Access::TransferRead: usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT; break;
           case Access::TransferWrite:
           case Access::ClearWrite: usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; break;
+          case Access::UniformRead:
+          case Access::IndirectRead: ADD_FAILURE() << "buffer access on an image"; break;
         }
       }
     }
