@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-tools spirv-tools
+  glslang-tools spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpng-dev
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy

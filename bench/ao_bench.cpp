@@ -1,21 +1,27 @@
-// ao_bench: GPU time of each pass and of the whole AO pipeline, per preset and resolution, from
-// Vulkan timestamp queries, reported to Google Benchmark as manual time (so its JSON is what
-// Debian's compare.py and `aoreplay compare` read). Besides the presets, each size has the high
-// preset with bent=0 (pipeline only) and with half_res=1 (every pass).
+// ao_bench: GPU time of each pass and of the whole pipeline of a technique, per preset and
+// resolution, from Vulkan timestamp queries, reported to Google Benchmark as manual time (so its
+// JSON is what Debian's compare.py and `aoreplay compare` read). Every technique is benchmarked the
+// same way, from its declarations: its presets, its passes (whatever its graph runs), and extra
+// configurations given as --set assignments.
 //
 // Each configuration replays frames 0:2 of the capture once (pipelines are compiled in the
 // replay's set-up, warm-ups run first) with `--reps` timed executions per frame; the second frame has valid
-// history, so the temporal pass runs. Its timed executions are the samples: benchmark repetition i
-// reports execution i. The GPU work is real and measured per execution; only the bookkeeping is
-// batched, so setting up Vulkan pipelines is not paid once per sample.
+// history, so a technique's history passes run. Its timed executions are the samples: benchmark
+// repetition i reports execution i. The GPU work is real and measured per execution; only the
+// bookkeeping is batched, so setting up Vulkan pipelines is not paid once per sample.
+// Names: PASS/TECHNIQUE/PRESET[/KEY:VALUE...]/WxH, and `pipeline` for the sum of the compute passes.
 //
-// Own flags (before Google Benchmark's): --sizes=320x180,640x360,1920x1080  --presets=low,medium,high,ultra
+// Own flags (before Google Benchmark's): --technique=NAME[,NAME...] (default gtao)
+// --sizes=320x180,640x360,1920x1080  --presets=NAME,... (default: every preset of each technique)
+// --extra=KEY=VALUE[;KEY=VALUE...] (repeatable: one more configuration per size, the default preset
+// with those assignments; e.g. --extra=bent=0 --extra=half_res=1 for gtao)
 // --reps=N (default 10)  --warmup=N (default 2)  --warmup-ms=MS (default 300)  --device=SEL  --capture=DIR  --cache=DIR
-// --scaling-size=WxH: where time against slices x steps is measured (default: the second size).
+// --scaling-size=WxH: where time against slices x steps is measured (default: the second size), for
+// techniques with `slices` and `steps` keys.
 // Sizes are read by aor::parseSize (options/size.h), as `aoreplay capture --size` is, numbers by
 // aor::parseInt/parseNumber (options/number.h); a bad value exits 2 before any device is opened.
-// --extra-slices=N (0..23) adds N GTAO slices to every configuration without renaming it: a real
-// slowdown for checking that `aoreplay compare` detects one (ultra's 9 + 23 is the 32-slice limit).
+// --extra-slices=N (0..23) adds N to the `slices` key of every configuration without renaming it: a
+// real slowdown for checking that `aoreplay compare` detects one.
 //
 // Warm-up is by time as well as by count: a GPU needs some hundred milliseconds of steady work to
 // leave its idle clocks, and a configuration measured in a 5 ms burst is measured at whatever clock
@@ -36,8 +42,10 @@
 #include "capture/input_error.h"
 #include "options/number.h"
 #include "options/size.h"
-#include "passes/pass_names.h"
+#include "blocks/pass_names.h"
 #include "pipeline/replayer.h"
+#include "techniques/frame_graph.h"
+#include "techniques/registry.h"
 #include "report/compare_stats.h"
 #include "vk/context.h"
 
@@ -46,7 +54,9 @@ namespace {
 
 struct Options {
   std::vector<std::pair<int, int>> sizes{{320, 180}, {640, 360}, {1920, 1080}};
-  std::vector<std::string> presets{"low", "medium", "high", "ultra"};
+  std::vector<std::string> techniques{"gtao"};
+  std::vector<std::string> presets;  // empty: every preset of each technique
+  std::vector<std::vector<std::string>> extras;
   int reps = 10;
   int warmup = 2;
   double warmupMs = 300;
@@ -58,13 +68,20 @@ struct Options {
 };
 
 struct Config {
+  const Technique* technique = nullptr;
+  std::string preset;               // "" for a technique without presets
+  std::vector<std::string> assignments;
   int width = 0, height = 0;
-  AoSettings settings;
   std::string label() const {
-    return fmt::format("s{}x{}{}{}/{}x{}", settings.slices, settings.steps, settings.bent ? "" : "/bent:0",
-                       settings.halfRes ? "/half_res:1" : "", width, height);
+    std::string name = technique->name + (preset.empty() ? "" : "/" + preset);
+    for (const auto& a : assignments) {
+      std::string part = a;
+      std::replace(part.begin(), part.end(), '=', ':');
+      name += "/" + part;
+    }
+    return fmt::format("{}/{}x{}", name, width, height);
   }
-  auto key() const { return std::tuple(width, height, settings.slices, settings.steps, settings.bent, settings.halfRes); }
+  std::string key() const { return label(); }
 };
 
 struct Measured {
@@ -74,7 +91,7 @@ struct Measured {
 
 class Harness {
  public:
-  explicit Harness(Options o) : options_(std::move(o)), context_({options_.device, false}) {}
+  explicit Harness(Options o) : options_(std::move(o)), source_(loadCapture(options_.capture)), context_({options_.device, false}) {}
   const Options& options() const { return options_; }
   const DeviceInfo& device() const { return context_.vk.info; }
 
@@ -88,13 +105,40 @@ class Harness {
     return found == measured_.end() ? nullptr : &found->second;
   }
 
+  // The settings of a configuration on `capture` (the radius is the capture's unless assigned).
+  Settings settings(const Config& config, const Capture& capture) const {
+    Settings s = resolveSettings(*config.technique, capture, config.preset, config.assignments);
+    if (options_.extraSlices && s.has("slices")) s.set("slices", s.value("slices") + options_.extraSlices);
+    return s;
+  }
+
+  // The passes a configuration's second frame runs (history valid), from its graph compiled without
+  // a device: what to register a series for.
+  std::vector<std::string> livePasses(const Config& config) const {
+    Settings s = settings(config, source_);
+    FrameBuilder::Setup setup;
+    setup.settings = &s;
+    const auto& frame = source_.frames.front();
+    setup.camera = setup.previousCamera = FrameCamera{frame.view, frame.projection, config.width, config.height, 1};
+    setup.capture = {source_.hasNormals, source_.hasDepth2 && config.technique->inputs.depth2 != InputUse::Unused};
+    setup.historyWanted = setup.historyValid = historyNeedsOf(s, 2).keeps;
+    std::unique_ptr<TechniqueState> state;
+    if (config.technique->prepare) state = config.technique->prepare(ReplaySetup{source_, s, nullptr});
+    setup.state = state.get();
+    VulkanContext noDevice;
+    PipelineCache pipelines(noDevice);
+    auto frameGraph = buildFrameGraph(pipelines, setup, {});
+    auto compiled = frameGraph.graph.compile();
+    std::vector<std::string> names;
+    for (const auto& p : compiled.passes) names.push_back(frameGraph.graph.passes()[p.pass].name);
+    return names;
+  }
+
   const Measured& measure(const Config& config) {
     auto found = measured_.find(config.key());
     if (found != measured_.end()) return found->second;
     Capture capture = resampledCapture(options_.capture, config.width, config.height, 2, options_.cache);
-    ReplayOptions replay;
-    replay.settings = settingsForCapture(capture, config.settings, false);
-    replay.settings.slices += options_.extraSlices;
+    ReplayOptions replay(settings(config, capture));
     replay.frameBegin = 0;
     replay.frameEnd = 1;
     auto probe = replayCapture(context_.vk, capture, replay, nullptr);
@@ -115,8 +159,9 @@ class Harness {
 
  private:
   Options options_;
+  Capture source_;
   ContextScope context_;
-  std::map<decltype(Config{}.key()), Measured> measured_;
+  std::map<std::string, Measured> measured_;
 };
 
 Harness* harness = nullptr;
@@ -126,11 +171,15 @@ void registerSeries(const std::string& name, Config config, std::string pass) {
   auto next = std::make_shared<size_t>(0);
   benchmark::RegisterBenchmark(name.c_str(), [config, pass, next](benchmark::State& state) {
     const auto& m = harness->measure(config);
-    const auto& samples = pass == "pipeline" ? m.pipelineMs : m.passMs.at(pass);
+    auto found = m.passMs.find(pass);
+    if (pass != "pipeline" && found == m.passMs.end()) {
+      state.SkipWithError(("pass " + pass + " did not run").c_str());
+      return;
+    }
+    const auto& samples = pass == "pipeline" ? m.pipelineMs : found->second;
     for (auto _ : state) state.SetIterationTime(samples.at(*next % samples.size()) / 1000.0);
     ++*next;
     state.counters["pixels"] = double(config.width) * double(config.height);
-    state.counters["slice_steps"] = double(config.settings.slices * config.settings.steps);
   })
       ->UseManualTime()
       ->Iterations(1)
@@ -138,74 +187,80 @@ void registerSeries(const std::string& name, Config config, std::string pass) {
       ->Unit(benchmark::kMillisecond);
 }
 
-void registerConfig(const Config& config, bool perPass) {
+void registerConfig(const Config& config) {
   registerSeries("pipeline/" + config.label(), config, "pipeline");
-  if (!perPass) return;
-  for (const char* pass : {"linearize_depth", "gtao", "spatial_columns", "spatial", "temporal", "upload", "readback"})
-    registerSeries(std::string(pass) + "/" + config.label(), config, pass);
-}
-
-Config makeConfig(int w, int h, const std::string& preset, int bent, int halfRes = 0) {
-  Config c{w, h, {}};
-  applyPreset(c.settings, preset);
-  c.settings.bent = bent;
-  c.settings.halfRes = halfRes;
-  return c;
+  for (const auto& pass : harness->livePasses(config)) registerSeries(pass + "/" + config.label(), config, pass);
 }
 
 // Slices x steps beyond the presets, at one size, for the scaling fit.
 const std::vector<std::pair<int, int>> kScalingSliceSteps{{1, 2}, {2, 2}, {2, 4}, {3, 3}, {4, 4}, {9, 3}, {6, 6}};
-
-std::pair<int, int> scalingSize();
-
-// The scaling fit's configurations: the high preset with each of kScalingSliceSteps, at
-// scalingSize(). Registration and the fit both take them from here.
-std::vector<Config> scalingConfigs() {
-  auto [w, h] = scalingSize();
-  std::vector<Config> configs;
-  for (auto [slices, steps] : kScalingSliceSteps) {
-    Config c = makeConfig(w, h, "high", 1);
-    c.settings.slices = slices;
-    c.settings.steps = steps;
-    configs.push_back(c);
-  }
-  return configs;
-}
-
-void registerAll() {
-  const auto& o = harness->options();
-  for (auto [w, h] : o.sizes) {
-    for (const auto& preset : o.presets) registerConfig(makeConfig(w, h, preset, 1), true);
-    registerConfig(makeConfig(w, h, "high", 0), false);  // bent=0 vs bent=1
-    registerConfig(makeConfig(w, h, "high", 1, 1), true);  // half_res=1: GTAO and the blur at half size
-  }
-  for (const auto& c : scalingConfigs()) registerSeries("gtao/" + c.label(), c, "gtao");
-}
 
 std::pair<int, int> scalingSize() {
   const auto& o = harness->options();
   return o.scalingSize ? *o.scalingSize : o.sizes.size() > 1 ? o.sizes[1] : o.sizes[0];
 }
 
+bool scales(const Technique& t) { return t.parameter("slices") && t.parameter("steps"); }
+
+// The scaling fit's configurations: the default preset with each of kScalingSliceSteps, at
+// scalingSize(), for the first technique with slices and steps. Registration and the fit both take
+// them from here.
+std::vector<Config> scalingConfigs() {
+  auto [w, h] = scalingSize();
+  std::vector<Config> configs;
+  for (const auto& name : harness->options().techniques) {
+    const Technique& t = findTechnique(name);
+    if (!scales(t)) continue;
+    for (auto [slices, steps] : kScalingSliceSteps)
+      configs.push_back({&t, t.defaultPreset, {fmt::format("slices={}", slices), fmt::format("steps={}", steps)}, w, h});
+    break;
+  }
+  return configs;
+}
+
+std::vector<std::string> presetsOf(const Technique& t) {
+  const auto& o = harness->options();
+  std::vector<std::string> names;
+  if (t.presets.empty()) return {""};
+  for (const auto& p : t.presets)
+    if (o.presets.empty() || std::count(o.presets.begin(), o.presets.end(), p.name)) names.push_back(p.name);
+  return names;
+}
+
+void registerAll() {
+  const auto& o = harness->options();
+  for (auto [w, h] : o.sizes)
+    for (const auto& name : o.techniques) {
+      const Technique& t = findTechnique(name);
+      for (const auto& preset : presetsOf(t)) registerConfig({&t, preset, {}, w, h});
+      for (const auto& extra : o.extras) registerConfig({&t, t.defaultPreset, extra, w, h});
+    }
+  for (const auto& c : scalingConfigs()) registerSeries("pipeline/" + c.label(), c, "pipeline");
+}
+
 ScalingInput scalingInput() {
   const auto& o = harness->options();
   ScalingInput in;
+  const Technique& first = findTechnique(o.techniques.front());
   // Only what the benchmark filter let run.
   for (auto [w, h] : o.sizes)
-    if (const auto* m = harness->alreadyMeasured(makeConfig(w, h, "high", 1)))
+    if (const auto* m = harness->alreadyMeasured({&first, first.defaultPreset, {}, w, h}))
       in.byPixels.push_back({double(w) * h, medianOf(m->pipelineMs)});
-  for (const auto& c : scalingConfigs())
-    if (const auto* m = harness->alreadyMeasured(c))
-      in.bySliceSteps.push_back({double(c.settings.slices * c.settings.steps), medianOf(m->passMs.at("gtao"))});
+  auto configs = scalingConfigs();  // in the order of kScalingSliceSteps
+  for (size_t i = 0; i < configs.size(); ++i)
+    if (const auto* m = harness->alreadyMeasured(configs[i])) {
+      auto [slices, steps] = kScalingSliceSteps[i];
+      in.bySliceSteps.push_back({double(slices * steps), medianOf(m->pipelineMs)});
+    }
   auto [w, h] = scalingSize();
   in.sliceStepsSize = fmt::format("{}x{}", w, h);
   return in;
 }
 
-std::vector<std::string> splitList(const std::string& s) {
+std::vector<std::string> splitList(const std::string& s, char separator = ',') {
   std::vector<std::string> out;
   std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  for (std::string item; std::getline(in, item, separator);) out.push_back(item);
   return out;
 }
 
@@ -226,6 +281,8 @@ Options parseOwnFlags(int& argc, char** argv) {
       if (o.sizes.empty()) throw InputError("", std::nullopt, "--sizes", "names no size (expected WxH,WxH,...)");
     } else if (auto ss = value("--scaling-size")) o.scalingSize = parseSize(*ss, "--scaling-size");
     else if (auto p = value("--presets")) o.presets = splitList(*p);
+    else if (auto t = value("--technique")) o.techniques = splitList(*t);
+    else if (auto x = value("--extra")) o.extras.push_back(splitList(*x, ';'));
     else if (auto r = value("--reps")) o.reps = parseInt(*r, "--reps", 5, 100000);  // compare needs 5 a side
     else if (auto wu = value("--warmup")) o.warmup = parseInt(*wu, "--warmup", 0, 100000);
     else if (auto wm = value("--warmup-ms")) o.warmupMs = parseNumber(*wm, "--warmup-ms", 0.0, 600000.0);
@@ -236,6 +293,7 @@ Options parseOwnFlags(int& argc, char** argv) {
     else argv[kept++] = argv[i];
   }
   argc = kept;
+  for (const auto& t : o.techniques) findTechnique(t);  // an unknown name is bad usage: exit 2
   return o;
 }
 

@@ -46,7 +46,7 @@ void printScaling(std::FILE* out, const ScalingInput& in) {
   }
   if (in.bySliceSteps.size() >= 2) {
     auto linear = fitLine(in.bySliceSteps);
-    fmt::print(out, "scaling with slices x steps (gtao, {}): {:.4f} ms per slice-step + {:.4f} ms, R^2 {:.4f}\n",
+    fmt::print(out, "scaling with slices x steps (pipeline, {}): {:.4f} ms per slice-step + {:.4f} ms, R^2 {:.4f}\n",
                in.sliceStepsSize, linear.slope, linear.intercept, linear.r2);
     for (auto [sliceSteps, ms] : in.bySliceSteps) fmt::print(out, "  {:>4.0f} slice-steps  {:9.4f} ms\n", sliceSteps, ms);
   }

@@ -1,5 +1,6 @@
 #pragma once
-// How GPU time grows: with pixel count (pipeline, high preset) and with slices x steps (GTAO pass).
+// How GPU time grows: with pixel count (pipeline, the default preset) and with slices x steps (the
+// pipeline of the first technique benchmarked that has both keys).
 // Least-squares fits, printed with their slope and R^2, so "linear" is a number, not a claim.
 #include <cstdio>
 #include <string>
@@ -15,7 +16,7 @@ LineFit fitLine(const std::vector<std::pair<double, double>>& points);
 
 struct ScalingInput {
   std::vector<std::pair<double, double>> byPixels;      // (pixels, median pipeline ms)
-  std::vector<std::pair<double, double>> bySliceSteps;  // (slices*steps, median gtao ms)
+  std::vector<std::pair<double, double>> bySliceSteps;  // (slices*steps, median pipeline ms)
   std::string sliceStepsSize;
 };
 

@@ -28,9 +28,10 @@
 #include "vk/resources.h"
 #include "vk/vk_check.h"
 
+#include "embedded_shaders.h"
+
 namespace aor::spirv {
-extern const uint32_t dispatch_floor[];
-extern const size_t dispatch_floor_words;
+std::span<const EmbeddedShader> aor_bench_shaders();  // generated index of bench/shaders/ (shaders/CMakeLists.txt)
 }  // namespace aor::spirv
 
 namespace aor::bench {
@@ -145,9 +146,12 @@ void barrierBetweenDispatches(VkCommandBuffer cmd) {
 
 void recordFloorDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline, const GpuImage& source,
                          const GpuImage& target) {
-  const BoundImage images[] = {{source.view, VK_IMAGE_LAYOUT_GENERAL}, {target.view, VK_IMAGE_LAYOUT_GENERAL}};
+  BoundResource images[2];
+  images[0].view = source.view;
+  images[1].view = target.view;
+  images[0].layout = images[1].layout = VK_IMAGE_LAYOUT_GENERAL;
   FloorConstants constants{{int(target.width), int(target.height)}};
-  aor::recordDispatch(vk, cmd, pipeline, images, &constants, target.width, target.height);
+  aor::recordDispatch(vk, cmd, pipeline, images, &constants, groupsFor(pipeline, target.width, target.height));
 }
 
 // The images and pipeline of one variant, made before any benchmark runs; FloorCases destroys
@@ -162,12 +166,10 @@ FloorCase createCase(VulkanContext& vk, const Variant& variant, std::pair<int, i
   FloorCase c;
   c.source = createImage(vk, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT);
   c.target = createImage(vk, width, height, variant.target, VK_IMAGE_USAGE_STORAGE_BIT);
-  const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
   const SpecializationValue specialization[] = {{uint32_t(shader::kFloorSpecMode), uint32_t(variant.mode)},
                                                 {uint32_t(shader::kFloorSpecWorkgroupSize), variant.workgroupSize}};
-  c.pipeline = createComputePipeline(vk, {spirv::dispatch_floor, spirv::dispatch_floor_words}, bindings,
-                                     sizeof(FloorConstants), specialization);
-  c.pipeline.workgroupSize = variant.workgroupSize;
+  c.pipeline = createComputePipeline(vk, spirv::code("dispatch_floor", spirv::aor_bench_shaders()), "dispatch_floor",
+                                     specialization);
   return c;
 }
 

@@ -1,23 +1,21 @@
 #pragma once
-// SPIR-V of every shader in this folder, compiled by glslang at build time (see CMakeLists.txt).
+// SPIR-V of every shader under shaders/, compiled by glslang at build time and found by name: the
+// path without ".comp" ("gtao/gtao"). See CMakeLists.txt.
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 namespace aor::spirv {
-#define AOR_DECLARE_SHADER(name)              \
-  extern const uint32_t name[];               \
-  extern const size_t name##_words;           \
-  inline std::span<const uint32_t> name##_code() { return {name, name##_words}; }
-AOR_DECLARE_SHADER(linearize_depth)
-AOR_DECLARE_SHADER(reconstruct_normals)
-AOR_DECLARE_SHADER(gtao)
-AOR_DECLARE_SHADER(gtao_reference)
-AOR_DECLARE_SHADER(spatial_columns_rgba16f)
-AOR_DECLARE_SHADER(spatial_columns_r16f)
-AOR_DECLARE_SHADER(spatial_denoise_rgba16f)
-AOR_DECLARE_SHADER(spatial_denoise_r16f)
-AOR_DECLARE_SHADER(temporal_denoise_rgba16f)
-AOR_DECLARE_SHADER(temporal_denoise_r16f)
-#undef AOR_DECLARE_SHADER
+
+struct EmbeddedShader {
+  std::string_view name;
+  std::span<const uint32_t> code;
+};
+
+std::span<const EmbeddedShader> aor_shaders();  // generated index of shaders/
+// The shader called `name` in `index` (default: shaders/); throws std::logic_error naming it when
+// there is none.
+std::span<const uint32_t> code(std::string_view name, std::span<const EmbeddedShader> index = aor_shaders());
+
 }  // namespace aor::spirv

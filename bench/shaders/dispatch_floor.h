@@ -2,7 +2,7 @@
 #define AOR_DISPATCH_FLOOR_H
 // dispatch_floor.comp (bench/dispatch_floor.cpp): what one compute dispatch costs before it does
 // any work, and what its one image store costs, per device.
-#include "../../shaders/shared_begin.h"
+#include "../../shaders/common/shared_begin.h"
 
 AOR_CONST int kFloorSpecMode = 0;
 AOR_CONST int kFloorSpecWorkgroupSize = 1;  // square workgroups, pixels a side
@@ -15,5 +15,5 @@ struct FloorConstants {
   ivec2 size;
 };
 
-#include "../../shaders/shared_end.h"
+#include "../../shaders/common/shared_end.h"
 #endif

@@ -2,6 +2,8 @@
 // Subcommands of aoreplay. Each register* adds its options; runSelected dispatches.
 #include <CLI/CLI.hpp>
 
+#include "techniques/technique.h"
+
 namespace aor::cli {
 
 inline constexpr int kExitOk = 0;
@@ -9,12 +11,14 @@ inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitNoDevice = 3;
 
-void registerRunCommand(CLI::App& app);
+// `help`: the technique whose keys the help text lists (--technique on the command line, else gtao).
+void registerRunCommand(CLI::App& app, const Technique& help);
 void registerCaptureCommand(CLI::App& app);
-void registerGraphCommand(CLI::App& app);
+void registerGraphCommand(CLI::App& app, const Technique& help);
 void registerDevicesCommand(CLI::App& app);
 void registerCompareCommand(CLI::App& app);
-void registerSweepCommand(CLI::App& app);
+void registerSweepCommand(CLI::App& app, const Technique& help);
+void registerTechniquesCommand(CLI::App& app);
 int runSelected(CLI::App& app);
 
 }  // namespace aor::cli

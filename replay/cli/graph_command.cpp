@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
-#include "pipeline/ao_graph.h"
+#include "techniques/frame_graph.h"
 #include "report/output_directory.h"
 #include "vk/context.h"
 
@@ -26,35 +26,47 @@ struct GraphArgs {
 
 int graphCommand(const GraphArgs& args) {
   Capture capture = loadCapture(args.capture);
-  AoSettings settings = args.settings.resolve(capture);
+  Settings settings = args.settings.resolve(capture);
   auto [begin, end] = args.settings.frameRange(capture);
-  bool temporalWanted = end - begin > 1 && settings.temporal > 0.0f;
-  auto camera = [&](int index) {
+  const Technique& technique = settings.technique();
+  bool historyWanted = historyNeedsOf(settings, end - begin).keeps;
+  auto setupFor = [&](int index, bool valid, HistoryStates history) {
     const auto& frame = capture.frames[size_t(index)];
-    return FrameCamera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
+    FrameBuilder::Setup s;
+    s.settings = &settings;
+    s.camera = FrameCamera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
+    const auto& previous = capture.frames[size_t(valid ? index - 1 : index)];
+    s.previousCamera = FrameCamera{previous.view, previous.projection, capture.width, capture.height, uint32_t(index)};
+    s.capture = {capture.hasNormals, capture.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
+    s.historyWanted = historyWanted;
+    s.historyValid = valid;
+    s.historyStates = std::move(history);
+    s.debugViews = {args.settings.debugViews.begin(), args.settings.debugViews.end()};
+    return s;
   };
+  std::unique_ptr<TechniqueState> state;
+  if (technique.prepare) state = technique.prepare(ReplaySetup{capture, settings, nullptr});
 
   VulkanContext noDevice;  // pipelines are created only when a pass executes, which never happens here
-  PassPipelines pipelines(noDevice);
-  GpuBuffer placeholder;
-  AoFrameBuffers buffers{&placeholder, capture.hasNormals ? &placeholder : nullptr, &placeholder};
+  PipelineCache pipelines(noDevice);
   // A steady-state frame: the second of the range when there is one, with history valid and its
   // history images in the states the first frame left them in (as in a replay).
   int index = begin;
   HistoryStates history;
-  if (temporalWanted) {
-    AoFrameInputs first{camera(begin), camera(begin), capture.hasNormals, true, false, settings};
-    auto firstGraph = buildAoFrameGraph(first, pipelines, {}, buffers);
+  if (historyWanted) {
+    auto first = setupFor(begin, false, {});
+    first.state = state.get();
+    auto firstGraph = buildFrameGraph(pipelines, first, {});
     history = historyStatesAfter(firstGraph.graph, firstGraph.graph.compile());
     index = begin + 1;
   }
-  AoFrameInputs inputs{camera(index), camera(temporalWanted ? index - 1 : index), capture.hasNormals, temporalWanted,
-                       temporalWanted, settings};
-  auto frameGraph = buildAoFrameGraph(inputs, pipelines, history, buffers);
+  auto setup = setupFor(index, historyWanted, history);
+  setup.state = state.get();
+  auto frameGraph = buildFrameGraph(pipelines, setup, {});
   auto compiled = frameGraph.graph.compile();
 
   fmt::print("capture: {} ({}x{}), frame {} of replay {}:{}, settings: {}\n", capture.name, capture.width,
-             capture.height, index, begin, end, toJson(settings).dump());
+             capture.height, index, begin, end, settings.toJson().dump());
   fmt::print("{}", graph::describe(frameGraph.graph, compiled));
   for (const auto& [pass, why] : frameGraph.notes) fmt::print("why {} is not needed: {}\n", pass, why);
 
@@ -66,11 +78,11 @@ int graphCommand(const GraphArgs& args) {
 
 }  // namespace
 
-void registerGraphCommand(CLI::App& app) {
+void registerGraphCommand(CLI::App& app, const Technique& help) {
   auto args = std::make_shared<GraphArgs>();
   auto* cmd = app.add_subcommand("graph", "print the compiled render graph and write it as Graphviz DOT");
   cmd->add_option("capture", args->capture, "capture folder")->required();
-  args->settings.add(*cmd);
+  args->settings.add(*cmd, help);
   cmd->add_option("--dot", args->dot, "DOT output file (default out/<capture name>/graph.dot)");
   handlers()["graph"] = [args] { return graphCommand(*args); };
 }

@@ -6,17 +6,21 @@
 
 #include "capture/input_error.h"
 #include "cli/commands.h"
+#include "cli/settings_options.h"
+#include "techniques/registry.h"
 #include "vk/vk_check.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"aoreplay: deterministic replay and profiling of screen-space ambient occlusion captures"};
   app.require_subcommand(1);
-  aor::cli::registerRunCommand(app);
+  const aor::Technique& help = aor::cli::techniqueForHelp(argc, argv, aor::findTechnique("gtao"));
+  aor::cli::registerRunCommand(app, help);
   aor::cli::registerCaptureCommand(app);
-  aor::cli::registerGraphCommand(app);
+  aor::cli::registerGraphCommand(app, help);
   aor::cli::registerDevicesCommand(app);
   aor::cli::registerCompareCommand(app);
-  aor::cli::registerSweepCommand(app);
+  aor::cli::registerSweepCommand(app, help);
+  aor::cli::registerTechniquesCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);

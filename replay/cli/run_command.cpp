@@ -12,6 +12,7 @@
 #include "cli/settings_options.h"
 #include "metrics/run_analysis.h"
 #include "pipeline/replayer.h"
+#include "techniques/frame_graph.h"
 #include "report/expectations.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
@@ -62,30 +63,36 @@ void addAnalysis(nlohmann::json& report, const RunAnalysis& analysis) {
   report["metrics"] = analysis.summaryJson();
 }
 
-// Without references, ghosting is measured against the same frames replayed with temporal=0 (one
-// extra untimed replay, only for runs that keep history).
+// Without references, ghosting is measured against the same frames replayed without history (the
+// technique's own no-history variant: one extra untimed replay, only for runs that keep history and
+// techniques that have one).
 std::map<int, std::vector<float>> replayWithoutHistory(VulkanContext& vk, const Capture& capture, const ReplayOptions& run) {
   std::map<int, std::vector<float>> frames;
   int end = run.frameEnd < 0 ? int(capture.frames.size()) : run.frameEnd;
   bool allReferenced = true;
   for (int i = run.frameBegin; i < end; ++i) allReferenced &= capture.frames[size_t(i)].reference.has_value();
-  if (allReferenced || run.settings.temporal <= 0.0f || end - run.frameBegin < 2) return frames;
-  ReplayOptions options;
-  options.settings = run.settings;
-  options.settings.temporal = 0.0f;
+  const Technique& technique = run.settings.technique();
+  if (allReferenced || !historyNeedsOf(run.settings, end - run.frameBegin).keeps || !technique.withoutHistory) return frames;
+  auto without = technique.withoutHistory(run.settings);
+  if (!without) return frames;
+  ReplayOptions options(*without);
   options.frameBegin = run.frameBegin;
   options.frameEnd = run.frameEnd;
   replayCapture(vk, capture, options, [&](const FrameOutput& f) { frames[f.index] = f.visibility; });
   return frames;
 }
 
+// The history weight the EMA prediction of ghosting uses: seed 000's temporal key, where the
+// technique has it.
+float historyWeightOf(const Settings& settings) { return settings.has("temporal") ? settings.f("temporal") : 0.0f; }
+
 int runCommand(const RunArgs& args) {
   Capture capture = loadCapture(args.capture);
   std::vector<Threshold> expectations;
   if (!args.expect.empty()) expectations = loadExpectations(args.expect);
-  ReplayOptions options;
-  options.settings = args.settings.resolve(capture);
+  ReplayOptions options(args.settings.resolve(capture));
   std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
+  options.debugViews = {args.settings.debugViews.begin(), args.settings.debugViews.end()};
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   options.keepHistoryOnCut = args.keepHistoryOnCut;
@@ -101,7 +108,8 @@ int runCommand(const RunArgs& args) {
     auto noHistory = replayWithoutHistory(context.vk, capture, options);
     result = replayCapture(context.vk, capture, options, [&](const FrameOutput& frame) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
-      analyzeFrame(analysis, capture, frame, options.settings.temporal, noHistory);
+      for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);
+      analyzeFrame(analysis, capture, frame, historyWeightOf(options.settings), noHistory);
     });
     destroyContext(context.vk);  // waits for the device; the last validation messages arrive here
     validationMessages = context.vk.validationMessageCount();
@@ -115,7 +123,7 @@ int runCommand(const RunArgs& args) {
 
   fmt::print("device: {} ({})\n", result.device.name, result.device.driver);
   fmt::print("capture: {} ({}x{}, frames {}:{}), settings: {}\n", capture.name, capture.width, capture.height,
-             options.frameBegin, options.frameEnd, toJson(options.settings).dump());
+             options.frameBegin, options.frameEnd, options.settings.toJson().dump());
   fmt::print("{}", passTable(result));
   for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
   HostOverhead overhead = hostOverhead(result);
@@ -131,8 +139,9 @@ int runCommand(const RunArgs& args) {
   auto failures = checkExpectations(expectations, report, args.expect);
   out.commit();
   if (args.validate) fmt::print("validation: 0 messages (synchronization validation on)\n");
-  fmt::print("outputs: {}/ (ao/NNNN.exr, ao/NNNN.png{}, report.json, trace.json)\n", out.finalPath().string(),
-             args.noImages ? " skipped by --no-images" : "");
+  fmt::print("outputs: {}/ (ao/NNNN.exr, ao/NNNN.png{}{}, report.json, trace.json)\n", out.finalPath().string(),
+             args.noImages ? " skipped by --no-images" : "",
+             options.debugViews.empty() ? "" : fmt::format(", debug/{{{}}}/NNNN.exr and .png", fmt::join(options.debugViews, ",")));
   if (failures.empty()) {
     if (!expectations.empty()) fmt::print("expectations: all {} met ({})\n", expectations.size(), args.expect);
     return kExitOk;
@@ -144,11 +153,11 @@ int runCommand(const RunArgs& args) {
 
 }  // namespace
 
-void registerRunCommand(CLI::App& app) {
+void registerRunCommand(CLI::App& app, const Technique& help) {
   auto args = std::make_shared<RunArgs>();
-  auto* cmd = app.add_subcommand("run", "replay a capture through the GTAO render graph");
+  auto* cmd = app.add_subcommand("run", "replay a capture through a technique's render graph, time each pass");
   cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
-  args->settings.add(*cmd);
+  args->settings.add(*cmd, help);
   cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000));
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame before timing")->check(CLI::Range(0, 100000));
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>/)");

@@ -1,32 +1,71 @@
 #include "cli/settings_options.h"
 
 #include <charconv>
+#include <cstring>
 
 #include <fmt/format.h>
 
-#include "pipeline/replayer.h"
+#include "techniques/registry.h"
 
 namespace aor::cli {
 
-void SettingsOptions::add(CLI::App& command) {
-  command.add_option("--preset", preset, "low (1x2), medium (2x2), high (3x3), ultra (9x3) slices x steps")
-      ->capture_default_str();
-  command.add_option("--set", assignments,
-                     "KEY=VALUE, repeatable; keys: radius slices steps falloff power thin spatial temporal bent");
-  command.add_option("--frames", frames, "half-open frame range A:B (default: all)");
-  command.add_option("--technique", technique,
-                     "gtao (default), or reference: the GTAO integral evaluated exhaustively, no noise, no denoise");
+std::string keyTable(const Technique& t) {
+  size_t width = 0;
+  for (const auto& p : t.parameters) width = std::max(width, p.key.size());
+  std::string out;
+  for (const auto& p : t.parameters)
+    out += fmt::format("  {:<{}}  {}{}: {}\n", p.key, width, describeRange(p), p.tunable ? ", tunable" : "", p.doc);
+  return out.empty() ? "  (none)\n" : out;
 }
 
-AoSettings SettingsOptions::resolve(const Capture& capture) const {
-  AoSettings base;
-  applyPreset(base, preset);
-  bool radiusGiven = false;
-  for (const auto& a : assignments) radiusGiven |= a.rfind("radius=", 0) == 0;
-  AoSettings s = settingsForCapture(capture, base, radiusGiven);
-  for (const auto& a : assignments) applySetting(s, a);
-  applyTechnique(s, parseTechnique(technique));
-  return s;
+std::string presetTable(const Technique& t) {
+  if (t.presets.empty()) return "(none: it runs with its defaults)";
+  std::vector<std::string> items;
+  for (const auto& p : t.presets) {
+    std::vector<std::string> values;
+    for (const auto& [key, value] : p.values) values.push_back(fmt::format("{}={}", key, valueText(*t.parameter(key), value)));
+    items.push_back(fmt::format("{} ({}{})", p.name, fmt::join(values, " "), p.name == t.defaultPreset ? "; default" : ""));
+  }
+  return fmt::format("{}", fmt::join(items, ", "));
+}
+
+const Technique& techniqueForHelp(int argc, const char* const* argv, const Technique& fallback) {
+  for (int i = 1; i < argc; ++i) {
+    std::string_view arg = argv[i];
+    std::string_view name;
+    if (arg == "--technique" && i + 1 < argc) name = argv[i + 1];
+    else if (arg.rfind("--technique=", 0) == 0) name = arg.substr(std::strlen("--technique="));
+    else continue;
+    try {
+      return findTechnique(name);
+    } catch (const InputError&) {
+      return fallback;  // the run itself reports the unknown name
+    }
+  }
+  return fallback;
+}
+
+void SettingsOptions::add(CLI::App& command, const Technique& help) {
+  std::vector<std::string> names;
+  for (const auto* t : userTechniques()) names.push_back(t->name);
+  command.add_option("--technique", technique, fmt::format("{} (aoreplay techniques lists them)", fmt::join(names, ", ")))
+      ->capture_default_str();
+  command.add_option("--preset", preset, fmt::format("presets of {}: {}", help.name, presetTable(help)));
+  command.add_option("--set", assignments,
+                     fmt::format("KEY=VALUE, repeatable: a key of {} (listed below; --technique NAME --help for "
+                                 "another technique's)",
+                                 help.name));
+  command.add_option("--frames", frames, "half-open frame range A:B (default: all)");
+  std::vector<std::string> views;
+  for (const auto& v : help.debugViews) views.push_back(v.name);
+  command.add_option("--debug", debugViews,
+                     fmt::format("read back a debug view of the technique, repeatable: debug/VIEW/NNNN.exr and .png "
+                                 "({}: {})", help.name, views.empty() ? "none" : fmt::format("{}", fmt::join(views, ", "))));
+  command.footer(fmt::format("Keys of technique {} (--set KEY=VALUE):\n{}", help.name, keyTable(help)));
+}
+
+Settings SettingsOptions::resolve(const Capture& capture) const {
+  return resolveSettings(findTechnique(technique), capture, preset, assignments);
 }
 
 std::pair<int, int> SettingsOptions::frameRange(const Capture& capture) const {

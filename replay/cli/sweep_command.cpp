@@ -11,6 +11,7 @@
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
 #include "pipeline/replayer.h"
+#include "techniques/registry.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
 #include "report/stats.h"
@@ -24,9 +25,10 @@ namespace fs = std::filesystem;
 
 struct SweepArgs {
   std::string capture;
-  std::string presets = "low,medium,high,ultra";
+  std::string presets;  // comma-separated; empty: every preset of each technique
   std::vector<std::string> grid;
-  SettingsOptions settings;  // only --set and --frames; preset and technique stay at their defaults
+  std::vector<std::string> assignments;
+  std::string frames;
   int repeat = 3;
   int warmup = 1;
   std::string out;
@@ -34,26 +36,31 @@ struct SweepArgs {
 };
 
 // Reference visibility per frame index: the capture's ray-traced one when every replayed frame
-// has it, else the screen-space reference technique run once with the base settings.
+// has it, else the screen-space reference technique run once with the sweep's --set values (those
+// it declares).
 struct SweepReference {
   std::string kind;
   std::map<int, std::vector<float>> frames;
 };
 
-SweepReference sweepReference(VulkanContext& vk, const Capture& capture, const ReplayOptions& base) {
+SweepReference sweepReference(VulkanContext& vk, const Capture& capture, int begin, int end,
+                              const std::vector<std::string>& assignments) {
   SweepReference ref{"ray-traced", {}};
   bool complete = true;
-  for (int i = base.frameBegin; i < base.frameEnd && complete; ++i) {
+  for (int i = begin; i < end && complete; ++i) {
     auto r = loadReference(capture, i);
     if (r) ref.frames[i] = std::move(*r);
     complete = r.has_value();
   }
   if (complete) return ref;
   ref = {"screen-space", {}};
-  ReplayOptions options = base;
-  options.repeat = 1;
-  options.warmup = 0;
-  applyTechnique(options.settings, AoTechnique::Reference);
+  const Technique& reference = findTechnique("reference");
+  std::vector<std::string> own;
+  for (const auto& a : assignments)
+    if (reference.parameter(a.substr(0, a.find('=')))) own.push_back(a);
+  ReplayOptions options(resolveSettings(reference, capture, "", own));
+  options.frameBegin = begin;
+  options.frameEnd = end;
   fmt::print(stderr, "the capture has no ray-traced reference: computing the screen-space reference\n");
   replayCapture(vk, capture, options, [&](const FrameOutput& f) { ref.frames[f.index] = f.visibility; });
   return ref;
@@ -88,20 +95,35 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
   return row;
 }
 
-int sweepCommand(const SweepArgs& args) {
-  Capture capture = loadCapture(args.capture);
-  ReplayOptions options;
-  options.settings = args.settings.resolve(capture);  // radius from the capture, then --set
-  std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
-  options.repeat = args.repeat;
-  options.warmup = args.warmup;
+std::vector<std::string> splitPresets(const std::string& text) {
   std::vector<std::string> presets;
-  for (size_t start = 0; start <= args.presets.size();) {
-    size_t comma = std::min(args.presets.find(',', start), args.presets.size());
-    presets.push_back(args.presets.substr(start, comma - start));
+  if (text.empty()) return presets;
+  for (size_t start = 0; start <= text.size();) {
+    size_t comma = std::min(text.find(',', start), text.size());
+    presets.push_back(text.substr(start, comma - start));
     start = comma + 1;
   }
-  auto configs = expandSweep(options.settings, presets, args.grid);  // bad presets/grids fail before any work
+  return presets;
+}
+
+int sweepCommand(const SweepArgs& args) {
+  Capture capture = loadCapture(args.capture);
+  SettingsOptions range;
+  range.frames = args.frames;
+  auto [begin, end] = range.frameRange(capture);
+  SweepRequest request{splitPresets(args.presets), args.grid, args.assignments};
+  auto plan = expandSweep(request, [&](const Technique& t, std::string_view preset, const std::vector<std::string>& assignments) {
+    return resolveSettings(t, capture, preset, assignments);
+  });  // bad presets, keys and grids fail before any work
+  for (const auto& note : plan.notes) fmt::print(stderr, "{}\n", note);
+  if (plan.configs.empty())
+    throw InputError("", std::nullopt, "--presets", fmt::format("'{}' leaves nothing to sweep", args.presets));
+  const auto& configs = plan.configs;
+  ReplayOptions options(configs.front().settings);
+  options.frameBegin = begin;
+  options.frameEnd = end;
+  options.repeat = args.repeat;
+  options.warmup = args.warmup;
   OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out), "sweep.json");
 
   SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
@@ -109,7 +131,7 @@ int sweepCommand(const SweepArgs& args) {
   {
     ContextScope context({args.device, false});
     info.device = context.vk.info.name;
-    auto reference = sweepReference(context.vk, capture, options);
+    auto reference = sweepReference(context.vk, capture, begin, end, args.assignments);
     info.referenceKind = reference.kind;
     for (size_t i = 0; i < configs.size(); ++i) {
       fmt::print(stderr, "[{}/{}] {}\n", i + 1, configs.size(), configs[i].name);
@@ -131,19 +153,25 @@ int sweepCommand(const SweepArgs& args) {
 
 }  // namespace
 
-void registerSweepCommand(CLI::App& app) {
+void registerSweepCommand(CLI::App& app, const Technique& help) {
   auto args = std::make_shared<SweepArgs>();
   auto* cmd = app.add_subcommand("sweep", "replay a capture under several settings: error against GPU time, Pareto front");
   cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
-  cmd->add_option("--presets", args->presets, "comma-separated presets to run")->capture_default_str();
+  cmd->add_option("--presets", args->presets,
+                  fmt::format("comma-separated presets to run (default: every preset of each technique; {}: {})", help.name,
+                              help.presetList()));
   cmd->add_option("--grid", args->grid,
-                  "KEY=v1,v2,..., repeatable: every preset is run with every combination (keys: --set keys, technique)");
-  cmd->add_option("--set", args->settings.assignments, "KEY=VALUE applied to every configuration, before the grid");
-  cmd->add_option("--frames", args->settings.frames, "half-open frame range A:B (default: all)");
+                  "KEY=v1,v2,..., repeatable: every preset is run with every combination; KEY is `technique` or a key "
+                  "of a technique in the sweep (applied to those that have it)");
+  cmd->add_option("--set", args->assignments,
+                  "KEY=VALUE applied to every configuration whose technique has the key, before the grid");
+  cmd->add_option("--frames", args->frames, "half-open frame range A:B (default: all)");
   cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
   cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
+  cmd->footer(fmt::format("Keys of technique {} (aoreplay techniques lists every technique's):\n{}", help.name,
+                          keyTable(help)));
   handlers()["sweep"] = [args] { return sweepCommand(*args); };
 }
 

@@ -4,7 +4,7 @@
 
 #include <glm/gtc/packing.hpp>
 
-#include "gtao.h"
+#include "gtao/gtao.h"
 #include "metrics/depth.h"
 
 namespace aor {
@@ -26,13 +26,13 @@ struct GtaoCpuPixel {
   vec3 gtaoLoadViewNormal(ivec2 pixel) const {
     return (*viewNormals)[size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x)];
   }
-#include "gtao_pixel.glsl"
+#include "gtao/gtao_pixel.glsl"
 };
 
 }  // namespace
 }  // namespace shader
 
-CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings) {
+CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const GtaoSettings& settings) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);
   std::vector<float> distance = linearViewDistances({gbuffer.depth.data(), pixels}, camera.projection);
   std::vector<glm::vec3> normals(pixels, glm::vec3(0.0f));
@@ -43,12 +43,12 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Ao
     for (int c = 0; c < 3; ++c) n[c] = glm::unpackHalf1x16(glm::packHalf1x16(gbuffer.normals[3 * i + size_t(c)]));
     normals[i] = worldToView * n;  // normalised (or replaced when unusable) by gtaoPixelCentre
   }
-  shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent != 0,
+  shader::GtaoCpuPixel pixel{gtaoConstants(camera, settings), settings.slices, settings.steps, settings.bent,
                              settings.thin > 0.0f, &distance, &normals};
   // At half resolution texel t is pixel 2t with the texel's noise, as gtao.comp's main() does.
   int divisor = aoResolutionDivisor(settings);
   glm::ivec2 size = aoWorkingSize(camera, settings);
-  return computeAoImage<float>(size.x, size.y, settings.bent != 0, [&](glm::ivec2 t, glm::vec3& bent) {
+  return computeAoImage<float>(size.x, size.y, settings.bent, [&](glm::ivec2 t, glm::vec3& bent) {
     return pixel.gtaoPixelWithNoise(t * divisor, shader::gtaoNoise(t, camera.frameIndex), bent);
   });
 }

@@ -4,13 +4,12 @@
 // normals). Tests hold the GPU to it; it is also the reference for precision studies.
 #include "capture/capture.h"
 #include "cpu/ao_image.h"
-#include "passes/passes.h"
-#include "pipeline/settings.h"
+#include "techniques/gtao/gtao_settings.h"
 
 namespace aor {
 
 // GTAO pass alone (no denoising) on a G-buffer with world-space normals; with half_res=1 the
 // image is aoWorkingSize(camera, settings), as the GPU's is.
-CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings);
+CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const GtaoSettings& settings);
 
 }  // namespace aor

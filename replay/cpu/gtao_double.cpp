@@ -7,7 +7,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "cpu/gtao_double_kernel.h"
-#include "gtao.h"
+#include "gtao/gtao.h"
 #include "metrics/depth.h"
 #include "metrics/percentile.h"
 
@@ -36,7 +36,7 @@ glm::dvec3 viewNormal(const GBuffer& gbuffer, size_t i, const glm::dmat3& worldT
 
 }  // namespace
 
-DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings) {
+DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera, const GtaoSettings& settings) {
   if (!gbuffer.normals.size()) throw std::invalid_argument("gtaoOnCpuDouble: needs captured normals");
   DoubleGtaoInputs in;
   setProjection(in, camera.projection, camera.width, camera.height);

@@ -9,12 +9,11 @@
 
 #include "capture/capture.h"
 #include "cpu/ao_image.h"
-#include "passes/passes.h"
-#include "pipeline/settings.h"
+#include "techniques/gtao/gtao_settings.h"
 
 namespace aor {
 
-DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings);
+DoubleAoImage gtaoOnCpuDouble(const GBuffer& gbuffer, const FrameCamera& camera, const GtaoSettings& settings);
 
 // How far a float32 visibility image is from the double model: maximum and 99th percentile of
 // |float - double| over all pixels, and where the maximum is.

@@ -18,8 +18,8 @@ inline double clamp(double x, double lo, double hi) { return glm::clamp(x, lo, h
 #define vec2 dvec2
 #define vec3 dvec3
 #define vec4 dvec4
-#include "gtao.h"
-#include "linearize_depth.h"
+#include "gtao/gtao.h"
+#include "blocks/linearize_depth.h"
 
 namespace aor::shader_double {
 namespace {
@@ -41,7 +41,7 @@ struct GtaoDoublePixel {
   dvec3 gtaoLoadViewNormal(ivec2 pixel) const { return in->normals[index(pixel)]; }
   dvec2 gtaoNoise(ivec2 pixel, uint) const { return dvec2(in->noise[index(pixel)]); }
   static dvec2 round(dvec2 offset) { return dvec2(glm::round(glm::vec2(offset))); }
-#include "gtao_pixel.glsl"
+#include "gtao/gtao_pixel.glsl"
 };
 
 }  // namespace

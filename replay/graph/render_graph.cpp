@@ -114,12 +114,25 @@ ResourceId RenderGraph::importBuffer(std::string name, BufferDesc desc, ImageSta
   return add(ResourceDecl{std::move(name), {}, desc, ResourceType::Buffer, ResourceKind::Imported, initialState});
 }
 
+ResourceId RenderGraph::importExternalImage(std::string name, ImageDesc desc, const GpuImage& image, ImageState initialState) {
+  ResourceId id = importImage(std::move(name), desc, initialState);
+  resources_[id].externalImage = &image;
+  return id;
+}
+
+ResourceId RenderGraph::importExternalBuffer(std::string name, BufferDesc desc, const GpuBuffer& buffer, ImageState initialState) {
+  ResourceId id = importBuffer(std::move(name), desc, initialState);
+  resources_[id].externalBuffer = &buffer;
+  return id;
+}
+
 HistoryPair RenderGraph::createHistory(std::string name, ImageDesc desc, bool previousValid,
                                        ImageState previousState, ImageState currentState) {
   validateDesc(name, desc);
   HistoryPair pair;
   auto history = [&](const char* half, ImageState state, bool current) {
-    return add(ResourceDecl{name + half, desc, {}, ResourceType::Image, ResourceKind::History, state, {}, name, current});
+    return add(ResourceDecl{name + half, desc, {}, ResourceType::Image, ResourceKind::History, state, {}, nullptr, nullptr,
+                            name, current});
   };
   if (previousValid) pair.previous = history(".previous", previousState, false);
   pair.current = history(".current", currentState, true);

@@ -12,6 +12,11 @@
 
 #include <vulkan/vulkan_core.h>
 
+namespace aor {
+struct GpuImage;
+struct GpuBuffer;
+}  // namespace aor
+
 namespace aor::graph {
 
 using ResourceId = uint32_t;
@@ -98,6 +103,10 @@ struct ResourceDecl {
   ResourceKind kind = ResourceKind::Transient;
   ImageState initialState;  // Imported/History: state left by earlier work (every subresource); Transient: UNDEFINED
   std::vector<ImageState> initialStates;  // when not empty: per subresource (layer * mips + mip), overriding initialState
+  // Imported only: the runtime object behind it, owned by whoever imported it (a technique's BVH,
+  // a staging buffer). Null: the runtime keeps a persistent one by name.
+  const GpuImage* externalImage = nullptr;
+  const GpuBuffer* externalBuffer = nullptr;
   std::string historyBase;  // History: the pair's name ("ao_history"; `name` adds .previous/.current)
   bool historyCurrent = false;  // History: the image this frame writes
   bool isBuffer() const { return type == ResourceType::Buffer; }
@@ -179,6 +188,9 @@ class RenderGraph {
   ResourceId importImage(std::string name, ImageDesc desc, ImageState initialState = {});
   ResourceId createBuffer(std::string name, BufferDesc desc);
   ResourceId importBuffer(std::string name, BufferDesc desc, ImageState initialState = {});
+  // Imports whose runtime object the caller owns (see ResourceDecl::externalImage/externalBuffer).
+  ResourceId importExternalImage(std::string name, ImageDesc desc, const GpuImage& image, ImageState initialState = {});
+  ResourceId importExternalBuffer(std::string name, BufferDesc desc, const GpuBuffer& buffer, ImageState initialState = {});
   // History images are explicit: `current` always exists; `previous` only when previousValid.
   HistoryPair createHistory(std::string name, ImageDesc desc, bool previousValid,
                             ImageState previousState = {}, ImageState currentState = {});

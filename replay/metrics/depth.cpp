@@ -1,6 +1,6 @@
 #include "metrics/depth.h"
 
-#include "linearize_depth.h"
+#include "blocks/linearize_depth.h"
 
 namespace aor {
 

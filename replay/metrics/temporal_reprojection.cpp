@@ -5,7 +5,7 @@
 
 #include "metrics/depth.h"
 #include "metrics/parallel_rows.h"
-#include "temporal_denoise.h"
+#include "blocks/temporal_denoise.h"
 
 namespace aor {
 

@@ -1,8 +1,10 @@
 #pragma once
 // The replay loop: decode a frame's G-buffer (one frame ahead, on a worker thread), upload it, run
 // the frame's compiled render graph `warmup + repeat` times with timestamps, read the result back,
-// and decide history validity for the next frame. Outputs go to a FrameSink.
+// and decide history validity for the next frame. Outputs go to a FrameSink. Which passes run is
+// the technique's (techniques/technique.h); this loop is the same for every technique.
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -10,19 +12,22 @@
 
 #include "capture/capture.h"
 #include "pipeline/camera_jump.h"
-#include "pipeline/settings.h"
+#include "pipeline/readback.h"
+#include "techniques/settings.h"
 #include "vk/context.h"
 
 namespace aor {
 
 struct ReplayOptions {
-  AoSettings settings;
+  explicit ReplayOptions(Settings s) : settings(std::move(s)) {}
+  Settings settings;
   int frameBegin = 0;      // half-open [frameBegin, frameEnd)
   int frameEnd = -1;       // -1: to the end
   int repeat = 1;          // timed executions per frame
   int warmup = 0;          // untimed executions per frame before the timed ones
+  std::set<std::string> debugViews;  // --debug views to read back (names the technique declares)
   bool keepHistoryOnCut = false;  // test-only: breaks history invalidation on purpose
-  int testPoisonHistoryAt = -1;   // test-only: before this frame (if its history is valid) its AO history is NaN
+  int testPoisonHistoryAt = -1;   // test-only: before this frame (if its history is valid) its "ao_history" is NaN
   CameraJumpLimits cameraJump;    // history is also reset when the camera turns or moves further
   std::function<void(int done, int total)> progress;
 };
@@ -49,13 +54,15 @@ struct FrameRecord {
   double sinkStartMs = 0;            // when the sink worker started it
   int64_t invalidDepthPixels = 0;    // NaN, Inf or outside [0,1]
   int64_t invalidNormalPixels = 0;   // NaN or Inf in a normal component (uploaded as is, ignored by GTAO)
+  std::vector<DebugCounters> debugCounters;  // debug buffers the run asked for (report.json frames[i].debug)
 };
 
 struct FrameOutput {
   int index = 0;
   int width = 0, height = 0;
   std::vector<float> visibility;  // width*height
-  std::vector<float> bent;        // width*height*3 view-space bent normals; empty with bent=0
+  std::vector<float> bent;        // width*height*3 view-space bent normals; empty without them
+  std::vector<DebugImage> debugImages;  // the debug views the run asked for
   const GBuffer* gbuffer = nullptr;  // the frame's inputs, valid during the sink call
   bool historyValid = false;
   std::string resetReason;
@@ -68,7 +75,7 @@ struct CulledPassInfo {
 
 struct ReplayResult {
   DeviceInfo device;
-  AoSettings settings;
+  Settings settings;
   std::vector<FrameRecord> frames;
   std::vector<CulledPassInfo> culled;       // of the last frame's graph
   std::string graphDescription;             // describe() of the last frame's compiled graph
@@ -90,9 +97,8 @@ HostOverhead hostOverhead(const ReplayResult& result);
 // Returns what to record for the frame (its write time is measured by the replayer).
 using FrameSink = std::function<void(const FrameOutput&)>;
 
-// Settings with the capture's scene.ao_radius as the default radius (explicit --set radius wins).
-AoSettings settingsForCapture(const Capture& capture, const AoSettings& base, bool radiusGiven);
-
+// Throws InputError for settings the capture cannot take and for --frames outside it, and
+// NoDeviceError when the device lacks what the settings need; both before any GPU work.
 ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink);
 
 }  // namespace aor

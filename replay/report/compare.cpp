@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
-#include "passes/pass_names.h"
+#include "blocks/pass_names.h"
 #include "report/compare_stats.h"
 
 namespace aor {

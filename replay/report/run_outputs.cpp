@@ -1,12 +1,14 @@
 #include "report/run_outputs.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <fstream>
 
 #include <fmt/format.h>
 
 #include "capture/image_io.h"
-#include "passes/pass_names.h"
+#include "blocks/pass_names.h"
 #include "report/stats.h"
 
 namespace aor {
@@ -68,6 +70,28 @@ void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
   writePngGray(stem.string() + ".png", frame.width, frame.height, frame.visibility.data());
 }
 
+void writeDebugImage(const fs::path& outDir, int frameIndex, const DebugImage& view) {
+  fs::create_directories(outDir / "debug" / view.name);
+  auto stem = outDir / "debug" / view.name / fmt::format("{:04d}", frameIndex);
+  static const char* kChannelNames[] = {"R", "G", "B", "A"};
+  size_t texels = size_t(view.width) * size_t(view.height);
+  std::vector<std::vector<float>> planes(view.channels, std::vector<float>(texels));
+  std::vector<ExrChannel> channels;
+  for (uint32_t c = 0; c < view.channels; ++c) {
+    for (size_t i = 0; i < texels; ++i) planes[c][i] = view.values[i * view.channels + c];
+    channels.push_back({kChannelNames[c], ExrPixelType::Float, planes[c].data()});
+  }
+  writeExr(stem.string() + ".exr", view.width, view.height, channels);
+  // The preview stretches the first channel's finite range to grey, so depths and counts are visible too.
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  for (float v : planes[0])
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  std::vector<float> grey(texels, 0.0f);
+  if (hi > lo)
+    for (size_t i = 0; i < texels; ++i) grey[i] = std::isfinite(planes[0][i]) ? (planes[0][i] - lo) / (hi - lo) : 0.0f;
+  writePngGray(stem.string() + ".png", view.width, view.height, grey.data());
+}
+
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result) {
   nlohmann::json report;
   report["tool"] = "aoreplay";
@@ -75,7 +99,7 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
                        {"height", capture.height}, {"frames", capture.frames.size()},
                        {"has_normals", capture.hasNormals}, {"has_depth2", capture.hasDepth2}};
   report["device"] = {{"name", result.device.name}, {"driver", result.device.driver}, {"api_version", result.device.apiVersion}};
-  report["settings"] = toJson(result.settings);
+  report["settings"] = result.settings.toJson();
   report["run"] = {{"frames", {options.frameBegin, options.frameBegin + int(result.frames.size())}},
                    {"repeat", options.repeat}, {"warmup", options.warmup}};
 
@@ -108,6 +132,11 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
     frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs},     {"wait", f.waitMs},
                         {"record", f.recordMs}, {"gpu", f.gpuWallMs},       {"readback", f.readbackMs},
                         {"write", f.writeMs}};
+    if (!f.debugCounters.empty()) {
+      nlohmann::json debug = nlohmann::json::object();
+      for (const auto& c : f.debugCounters) debug[c.name] = c.values;
+      frame["debug"] = debug;
+    }
     frame["invalid_depth_pixels"] = f.invalidDepthPixels;
     frame["invalid_normal_pixels"] = f.invalidNormalPixels;
     frames.push_back(frame);

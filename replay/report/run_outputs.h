@@ -12,7 +12,9 @@
 
 namespace aor {
 
+// ao/NNNN.exr and .png; debug/VIEW/NNNN.exr and .png for a debug view read back.
 void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& frame);
+void writeDebugImage(const std::filesystem::path& outDir, int frameIndex, const DebugImage& view);
 // Per pass name, every timed duration over all frames and repetitions, in first-seen order.
 std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
 // The pipeline's cost: the sum of the compute passes' medians. The harness's host copies (upload,

@@ -7,6 +7,7 @@
 
 #include "capture/input_error.h"
 #include "report/svg_plot.h"
+#include "techniques/registry.h"
 
 namespace aor {
 namespace {
@@ -36,15 +37,6 @@ GridAxis parseAxis(const std::string& text) {
   return axis;
 }
 
-void applyAxisValue(AoSettings& settings, const std::string& key, const std::string& value) {
-  if (key == "technique")
-    applyTechnique(settings, parseTechnique(value));
-  else
-    applySetting(settings, key + "=" + value);
-}
-
-// Numbers as the user would write them in a table: no trailing zeros, finite precision.
-std::string number(double v) { return fmt::format("{:.6g}", v); }
 
 std::vector<std::string> passNames(const std::vector<SweepRow>& rows) {
   std::vector<std::string> names;
@@ -69,28 +61,69 @@ std::string csvField(const std::string& text) {
 
 }  // namespace
 
-std::vector<SweepConfig> expandSweep(const AoSettings& base, const std::vector<std::string>& presets,
-                                     const std::vector<std::string>& grid) {
+SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resolve) {
   std::vector<GridAxis> axes;
-  for (const auto& g : grid) axes.push_back(parseAxis(g));
-  std::vector<SweepConfig> configs;
-  for (const auto& preset : presets) {
-    SweepConfig c{preset, base};
-    applyPreset(c.settings, preset);
-    configs.push_back(c);
+  std::vector<const Technique*> techniques;
+  bool techniqueAxis = false;
+  for (const auto& g : request.grid) {
+    GridAxis axis = parseAxis(g);
+    if (axis.key != "technique") {
+      axes.push_back(axis);
+      continue;
+    }
+    techniqueAxis = true;
+    for (const auto& name : axis.values) techniques.push_back(&findTechnique(name));
   }
-  for (const auto& axis : axes) {
-    std::vector<SweepConfig> expanded;
-    for (const auto& c : configs)
-      for (const auto& value : axis.values) {
-        SweepConfig e = c;
-        applyAxisValue(e.settings, axis.key, value);
-        e.name += fmt::format(" {}={}", axis.key, value);
-        expanded.push_back(e);
+  if (!techniqueAxis) techniques.push_back(&findTechnique(request.defaultTechnique));
+  // Keys no technique declares are typos, not axes that happen not to apply.
+  auto declaredBySome = [&](const std::string& key) {
+    return std::any_of(techniques.begin(), techniques.end(), [&](const Technique* t) { return t->parameter(key); });
+  };
+  for (const auto& axis : axes)
+    if (!declaredBySome(axis.key))
+      throw InputError("", std::nullopt, "--grid", fmt::format("no technique of the sweep has the key '{}'", axis.key));
+  for (const auto& a : request.assignments) {
+    std::string key = a.substr(0, a.find('='));
+    if (!declaredBySome(key))
+      throw InputError("", std::nullopt, key, fmt::format("--set {}: no technique of the sweep has the key '{}'", a, key));
+  }
+
+  SweepPlan plan;
+  for (const Technique* t : techniques) {
+    std::vector<std::string> own;  // the --set assignments this technique declares
+    for (const auto& a : request.assignments)
+      if (t->parameter(a.substr(0, a.find('=')))) own.push_back(a);
+    std::vector<std::string> presets;
+    if (t->presets.empty()) {
+      presets = {""};  // runs once, with its defaults
+    } else if (request.presets.empty()) {
+      for (const auto& p : t->presets) presets.push_back(p.name);
+    } else {
+      for (const auto& p : request.presets) {
+        if (t->preset(p)) presets.push_back(p);
+        else plan.notes.push_back(fmt::format("technique {} has no preset '{}' (presets: {}): skipped", t->name, p, t->presetList()));
       }
-    configs = std::move(expanded);
+    }
+    for (const auto& preset : presets) {
+      std::string name = preset.empty() ? "" : preset;
+      if (techniqueAxis) name += fmt::format("{}technique={}", name.empty() ? "" : " ", t->name);
+      std::vector<SweepConfig> configs{{name, resolve(*t, preset, own)}};
+      for (const auto& axis : axes) {
+        if (!t->parameter(axis.key)) continue;
+        std::vector<SweepConfig> expanded;
+        for (const auto& c : configs)
+          for (const auto& value : axis.values) {
+            SweepConfig e = c;
+            e.settings.assign(axis.key, value);
+            e.name += fmt::format("{}{}={}", e.name.empty() ? "" : " ", axis.key, value);
+            expanded.push_back(e);
+          }
+        configs = std::move(expanded);
+      }
+      plan.configs.insert(plan.configs.end(), configs.begin(), configs.end());
+    }
   }
-  return configs;
+  return plan;
 }
 
 void markPareto(std::vector<SweepRow>& rows) {
@@ -116,7 +149,7 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
   for (const auto& row : rows) {
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& [name, ms] : row.passMs) passes[name] = ms;
-    list.push_back({{"configuration", row.config.name}, {"settings", toJson(row.config.settings)},
+    list.push_back({{"configuration", row.config.name}, {"settings", row.config.settings.toJson()},
                     {"gpu_ms_median", passes}, {"gpu_ms_total", row.totalMs}, {"rmse", row.rmse},
                     {"ssim", row.ssim}, {"error", row.error}, {"pareto", row.pareto}});
   }
@@ -126,13 +159,19 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
 
 std::string sweepCsv(const std::vector<SweepRow>& rows) {
   auto passes = passNames(rows);
-  std::string csv = "configuration,technique,slices,steps,radius,falloff,thin,spatial,temporal";
+  // Every key of every technique in the sweep, in the order they are first declared.
+  std::vector<const Parameter*> keys;
+  for (const auto& row : rows)
+    for (const auto& p : row.config.settings.technique().parameters)
+      if (std::none_of(keys.begin(), keys.end(), [&](const Parameter* k) { return k->key == p.key; })) keys.push_back(&p);
+  std::string csv = "configuration,technique";
+  for (const auto* k : keys) csv += "," + k->key;
   for (const auto& p : passes) csv += fmt::format(",{}_ms", p);
   csv += ",total_ms,rmse,ssim,pareto\n";
   for (const auto& row : rows) {
     const auto& s = row.config.settings;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{}", csvField(row.config.name), techniqueName(s.technique), s.slices,
-                       s.steps, number(s.radius), number(s.falloff), number(s.thin), s.spatial, number(s.temporal));
+    csv += fmt::format("{},{}", csvField(row.config.name), s.technique().name);
+    for (const auto* k : keys) csv += "," + (s.has(k->key) ? csvField(s.text(k->key)) : std::string());
     for (const auto& p : passes) csv += fmt::format(",{:.6f}", passMs(row, p));
     csv += fmt::format(",{:.6f},{:.6f},{:.6f},{}\n", row.totalMs, row.rmse, row.ssim, row.pareto ? 1 : 0);
   }

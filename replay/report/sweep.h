@@ -7,14 +7,36 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/settings.h"
+#include <functional>
+
+#include "techniques/settings.h"
 
 namespace aor {
 
 struct SweepConfig {
-  std::string name;  // e.g. "high" or "high slices=4 thin=1"
-  AoSettings settings;
+  std::string name;  // e.g. "high", "high slices=4 thin=1", "high technique=xegtao"
+  Settings settings;
 };
+
+struct SweepRequest {
+  std::vector<std::string> presets;      // empty: every preset of each technique
+  std::vector<std::string> grid;         // "KEY=v1,v2,...": a technique's key, or `technique`
+  std::vector<std::string> assignments;  // --set KEY=VALUE, before the grid
+  std::string defaultTechnique = "gtao"; // without a technique axis
+};
+struct SweepPlan {
+  std::vector<SweepConfig> configs;
+  std::vector<std::string> notes;  // presets skipped for techniques that lack them
+};
+// Settings of `technique` with `preset` ("" for its default) and the assignments it declares.
+using SettingsResolver =
+    std::function<Settings(const Technique& technique, std::string_view preset, const std::vector<std::string>& assignments)>;
+
+// Each technique (the `technique` axis, else the default) runs each of its presets named in
+// `presets` (a preset it lacks is skipped with a note; a technique without presets runs once), times
+// the cartesian product of the other grid axes. A --set or grid key applies to every technique that
+// declares it and is an error only if none does. Throws InputError naming the bad axis or key.
+SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resolve);
 
 struct SweepRow {
   SweepConfig config;
@@ -24,11 +46,6 @@ struct SweepRow {
   double rmse = 0, ssim = 0;
   bool pareto = false;
 };
-
-// Presets x the cartesian product of the grid axes ("KEY=v1,v2,..."; KEY is a --set key or
-// `technique`), each applied on top of `base` in that order. Throws InputError naming the bad axis.
-std::vector<SweepConfig> expandSweep(const AoSettings& base, const std::vector<std::string>& presets,
-                                     const std::vector<std::string>& grid);
 
 // A row is Pareto-optimal when no other row is at least as fast and at least as accurate (RMSE)
 // and strictly better in one of the two.

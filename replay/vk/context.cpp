@@ -101,6 +101,11 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
                                 VK_API_VERSION_MINOR(props.properties.apiVersion),
                                 VK_API_VERSION_PATCH(props.properties.apiVersion));
   info.isLavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+  for (const auto& e : extensions) info.extensions.push_back(e.extensionName);
   return info;
 }
 
@@ -194,13 +199,17 @@ VkSampler createSampler(VkDevice device, VkFilter filter) {
   info.magFilter = info.minFilter = filter;
   info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  info.maxLod = 0.0f;
+  info.maxLod = VK_LOD_CLAMP_NONE;  // textureLod reaches every level of a mip chain
   VkSampler sampler = VK_NULL_HANDLE;
   VK_CHECK(vkCreateSampler(device, &info, nullptr, &sampler));
   return sampler;
 }
 
 }  // namespace
+
+bool DeviceInfo::hasExtension(const std::string& name) const {
+  return std::find(extensions.begin(), extensions.end(), name) != extensions.end();
+}
 
 std::vector<DeviceInfo> listDevices() {
   VkInstance instance = createInstance(false);
@@ -239,6 +248,7 @@ void createContext(VulkanContext& ctx, const ContextOptions& options) {
   poolInfo.queueFamilyIndex = ctx.queueFamily;
   VK_CHECK(vkCreateCommandPool(ctx.device, &poolInfo, nullptr, &ctx.commandPool));
   ctx.nearestSampler = createSampler(ctx.device, VK_FILTER_NEAREST);
+  ctx.linearSampler = createSampler(ctx.device, VK_FILTER_LINEAR);
 }
 
 void submitAndWait(const VulkanContext& ctx, VkCommandBuffer cmd, VkFence fence) {
@@ -261,6 +271,7 @@ void destroyContext(VulkanContext& ctx) {
   if (ctx.device) {
     vkDeviceWaitIdle(ctx.device);
     vkDestroySampler(ctx.device, ctx.nearestSampler, nullptr);
+    vkDestroySampler(ctx.device, ctx.linearSampler, nullptr);
     vkDestroyCommandPool(ctx.device, ctx.commandPool, nullptr);
     vkDestroyDevice(ctx.device, nullptr);
   }

@@ -20,6 +20,8 @@ struct DeviceInfo {
   std::string driver;
   std::string apiVersion;
   bool isLavapipe = false;
+  std::vector<std::string> extensions;  // every device extension the driver offers
+  bool hasExtension(const std::string& name) const;
 };
 
 struct VulkanContext {
@@ -30,7 +32,8 @@ struct VulkanContext {
   VkQueue queue = VK_NULL_HANDLE;
   uint32_t queueFamily = 0;
   VkCommandPool commandPool = VK_NULL_HANDLE;
-  VkSampler nearestSampler = VK_NULL_HANDLE;
+  VkSampler nearestSampler = VK_NULL_HANDLE;  // clamp to edge, every mip level
+  VkSampler linearSampler = VK_NULL_HANDLE;
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
   VkPhysicalDeviceMemoryProperties memoryProperties{};
   DeviceInfo info;

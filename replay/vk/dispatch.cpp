@@ -3,36 +3,58 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "vk/context.h"
 #include "vk/resources.h"
 
 namespace aor {
 
+DispatchGroups groupsFor(const ComputePipeline& pipeline, uint32_t x, uint32_t y, uint32_t z) {
+  auto groups = [](uint32_t n, uint32_t size) { return (n + size - 1) / size; };
+  return {groups(x, pipeline.localSize[0]), groups(y, pipeline.localSize[1]), groups(z, pipeline.localSize[2])};
+}
+
 void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline,
-                    std::span<const BoundImage> images, const void* pushConstants, uint32_t width, uint32_t height) {
-  if (images.size() != pipeline.bindings.size()) throw std::logic_error("dispatch binds a different number of images than the pipeline declares");
-  std::vector<VkDescriptorImageInfo> infos;
-  infos.reserve(images.size());
+                    std::span<const BoundResource> bindings, const void* pushConstants, DispatchGroups groups) {
+  const auto& declared = pipeline.shader.bindings;
+  if (bindings.size() != declared.size())
+    throw std::logic_error(fmt::format("dispatch binds {} resources; the shader declares {}", bindings.size(), declared.size()));
+  std::vector<VkDescriptorImageInfo> images(bindings.size());
+  std::vector<VkDescriptorBufferInfo> buffers(bindings.size());
   std::vector<VkWriteDescriptorSet> writes;
-  uint32_t binding = 0;
-  for (const BoundImage& image : images) {
-    VkDescriptorType type = pipeline.bindings[binding];
-    VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : vk.nearestSampler;
-    infos.push_back({sampler, image.view, image.layout});
+  for (uint32_t i = 0; i < bindings.size(); ++i) {
+    const BoundResource& r = bindings[i];
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstBinding = binding++;
+    write.dstBinding = i;
     write.descriptorCount = 1;
-    write.descriptorType = type;
-    write.pImageInfo = &infos.back();
+    write.descriptorType = declared[i].type;
+    switch (declared[i].type) {
+      case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+      case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+      case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: {
+        bool sampler = declared[i].type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        images[i] = {sampler ? (r.sampler ? r.sampler : vk.nearestSampler) : VK_NULL_HANDLE, r.view, r.layout};
+        write.pImageInfo = &images[i];
+        break;
+      }
+      case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+      case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+        buffers[i] = {r.buffer, r.offset, r.range};
+        write.pBufferInfo = &buffers[i];
+        break;
+      default:
+        throw std::logic_error(fmt::format("binding {} ('{}') is a {}, which dispatches cannot bind", i, declared[i].name,
+                                           descriptorTypeName(declared[i].type)));
+    }
     writes.push_back(write);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
-  vk.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, uint32_t(writes.size()), writes.data());
-  if (pipeline.pushConstantSize)
-    vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline.pushConstantSize, pushConstants);
-  uint32_t groups = pipeline.workgroupSize;
-  if (groups == 0) throw std::logic_error("pipeline has no workgroup size");
-  vkCmdDispatch(cmd, (width + groups - 1) / groups, (height + groups - 1) / groups, 1);
+  if (!writes.empty())
+    vk.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, uint32_t(writes.size()), writes.data());
+  if (pipeline.shader.pushConstantBytes)
+    vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline.shader.pushConstantBytes, pushConstants);
+  vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
 }
 
 }  // namespace aor

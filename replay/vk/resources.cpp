@@ -28,38 +28,53 @@ uint32_t findMemoryType(const VulkanContext& ctx, uint32_t typeBits, VkMemoryPro
   throw std::runtime_error(fmt::format("no Vulkan memory type with flags {:#x} among bits {:#x}", flags, typeBits));
 }
 
-GpuImage createImageUnbound(const VulkanContext& ctx, uint32_t width, uint32_t height, VkFormat format,
-                            VkImageUsageFlags usage) {
+GpuImage createImageUnbound(const VulkanContext& ctx, const ImageShape& shape, VkImageUsageFlags usage) {
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {width, height, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.format = shape.format;
+  info.extent = {shape.width, shape.height, 1};
+  info.mipLevels = shape.mipLevels;
+  info.arrayLayers = shape.arrayLayers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   GpuImage image;
-  image.format = format;
-  image.width = width;
-  image.height = height;
+  image.format = shape.format;
+  image.width = shape.width;
+  image.height = shape.height;
+  image.mipLevels = shape.mipLevels;
+  image.arrayLayers = shape.arrayLayers;
   VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &image.image));
   return image;
 }
 
-void bindImage(const VulkanContext& ctx, GpuImage& image, VkDeviceMemory memory, VkDeviceSize offset) {
-  VK_CHECK(vkBindImageMemory(ctx.device, image.image, memory, offset));
+namespace {
+
+VkImageView createView(const VulkanContext& ctx, const GpuImage& image, const ImageViewKey& key) {
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = image.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.viewType = key.arrayed ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   view.format = image.format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &image.view));
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, key.baseMip, key.mipCount, key.baseLayer, key.layerCount};
+  VkImageView handle = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &handle));
+  return handle;
 }
 
-GpuImage createImage(const VulkanContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage) {
-  GpuImage image = createImageUnbound(ctx, width, height, format, usage);
+ImageViewKey wholeImage(const GpuImage& image) {
+  return {0, image.mipLevels, 0, image.arrayLayers, image.arrayLayers > 1};
+}
+
+}  // namespace
+
+void bindImage(const VulkanContext& ctx, GpuImage& image, VkDeviceMemory memory, VkDeviceSize offset) {
+  VK_CHECK(vkBindImageMemory(ctx.device, image.image, memory, offset));
+  image.view = createView(ctx, image, wholeImage(image));
+}
+
+GpuImage createImage(const VulkanContext& ctx, const ImageShape& shape, VkImageUsageFlags usage) {
+  GpuImage image = createImageUnbound(ctx, shape, usage);
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device, image.image, &req);
   GpuMemory memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits);
@@ -68,7 +83,16 @@ GpuImage createImage(const VulkanContext& ctx, uint32_t width, uint32_t height, 
   return image;
 }
 
+VkImageView imageViewOf(const VulkanContext& ctx, const GpuImage& image, const ImageViewKey& key) {
+  if (key == wholeImage(image)) return image.view;
+  for (const auto& [k, view] : image.partViews)
+    if (k == key) return view;
+  image.partViews.emplace_back(key, createView(ctx, image, key));
+  return image.partViews.back().second;
+}
+
 void destroyImage(const VulkanContext& ctx, GpuImage& image) {
+  for (auto& [key, view] : image.partViews) vkDestroyImageView(ctx.device, view, nullptr);
   if (image.view) vkDestroyImageView(ctx.device, image.view, nullptr);
   if (image.image) vkDestroyImage(ctx.device, image.image, nullptr);
   if (image.memory) vkFreeMemory(ctx.device, image.memory, nullptr);
@@ -89,12 +113,31 @@ void freeMemory(const VulkanContext& ctx, GpuMemory& memory) {
   memory = {};
 }
 
-GpuBuffer createHostBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
+GpuBuffer createBufferUnbound(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
   GpuBuffer buffer;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
   info.usage = usage;
   VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &buffer.buffer));
+  buffer.size = size;
+  return buffer;
+}
+
+void bindBuffer(const VulkanContext& ctx, GpuBuffer& buffer, VkDeviceMemory memory, VkDeviceSize offset) {
+  VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, memory, offset));
+}
+
+GpuBuffer createDeviceBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
+  GpuBuffer buffer = createBufferUnbound(ctx, size, usage);
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device, buffer.buffer, &req);
+  buffer.memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits).memory;
+  bindBuffer(ctx, buffer, buffer.memory, 0);
+  return buffer;
+}
+
+GpuBuffer createHostBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
+  GpuBuffer buffer = createBufferUnbound(ctx, size, usage);
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, buffer.buffer, &req);
   VkMemoryPropertyFlags flags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
@@ -103,7 +146,7 @@ GpuBuffer createHostBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBuffer
   if ((usage & VK_BUFFER_USAGE_TRANSFER_DST_BIT) && hasMemoryType(ctx, req.memoryTypeBits, flags | VK_MEMORY_PROPERTY_HOST_CACHED_BIT))
     flags |= VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
   buffer.memory = allocateDeviceMemory(ctx, req.size, req.memoryTypeBits, flags).memory;
-  VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, buffer.memory, 0));
+  bindBuffer(ctx, buffer, buffer.memory, 0);
   VK_CHECK(vkMapMemory(ctx.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
   return buffer;
 }
@@ -114,21 +157,25 @@ void destroyBuffer(const VulkanContext& ctx, GpuBuffer& buffer) {
   buffer = {};
 }
 
-ComputePipeline createComputePipeline(const VulkanContext& ctx, std::span<const uint32_t> spirv,
-                                      std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
+ComputePipeline createComputePipeline(const VulkanContext& ctx, std::span<const uint32_t> spirv, const std::string& name,
                                       std::span<const SpecializationValue> specialization) {
   ComputePipeline p;
-  p.pushConstantSize = pushConstantSize;
-  p.bindings.assign(bindings.begin(), bindings.end());
+  p.shader = reflectComputeShader(spirv, name);
+  for (int d = 0; d < 3; ++d) {
+    p.localSize[d] = p.shader.localSize[d];
+    for (const auto& s : specialization)
+      if (p.shader.localSizeSpecId[d] >= 0 && s.id == uint32_t(p.shader.localSizeSpecId[d])) p.localSize[d] = s.value;
+  }
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
-  for (uint32_t i = 0; i < bindings.size(); ++i)
-    layoutBindings.push_back({i, bindings[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  for (uint32_t i = 0; i < p.shader.bindings.size(); ++i)
+    layoutBindings.push_back({i, p.shader.bindings[i].type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   setInfo.bindingCount = uint32_t(layoutBindings.size());
   setInfo.pBindings = layoutBindings.data();
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &setInfo, nullptr, &p.setLayout));
 
+  uint32_t pushConstantSize = p.shader.pushConstantBytes;
   VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.setLayoutCount = 1;

@@ -9,9 +9,9 @@
 #include "capture/image_io.h"
 #include "cpu/gtao_cpu.h"
 #include "gpu_test_support.h"
-#include "linearize_depth.h"
+#include "blocks/linearize_depth.h"
 #include "passes/camera.h"
-#include "spatial_denoise.h"
+#include "blocks/spatial_denoise.h"
 
 namespace aor::test {
 namespace {

@@ -19,7 +19,7 @@
 #include "cpu/gtao_double.h"
 #include "cpu/gtao_double_kernel.h"
 #include "gpu_test_support.h"
-#include "temporal_denoise.h"
+#include "blocks/temporal_denoise.h"
 
 namespace aor::test {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gtao.h"
+#include "gtao/gtao.h"
 
 namespace aor::shader {
 namespace {

@@ -2,7 +2,7 @@
 // pixel's place between the texels, cut by depth edges, plain bilinear when no texel matches.
 #include <gtest/gtest.h>
 
-#include "temporal_denoise.h"
+#include "blocks/temporal_denoise.h"
 
 namespace aor::shader {
 namespace {

@@ -1,0 +1,101 @@
+#include "graph/pass_context.h"
+
+#include <fmt/format.h>
+
+namespace aor::graph {
+
+const GpuImage& PassContext::image(ResourceId id) const {
+  if (id >= resources.size() || !resources[id].image) throw std::logic_error("pass touched an image it did not declare");
+  return *resources[id].image;
+}
+
+const GpuBuffer& PassContext::buffer(ResourceId id) const {
+  if (id >= resources.size() || !resources[id].buffer) throw std::logic_error("pass touched a buffer it did not declare");
+  return *resources[id].buffer;
+}
+
+bool PassContext::has(ResourceId id) const {
+  if (!pass || !compiled) return false;
+  for (size_t a = 0; a < pass->accesses.size(); ++a)
+    if (pass->accesses[a].resource == id && compiled->accessLive[a]) return true;
+  return false;
+}
+
+VkImageLayout PassContext::layout(ResourceId id, Subresources range) const {
+  if (!pass) throw std::logic_error("no pass is being recorded");
+  const ResourceDecl& decl = graph.resources().at(id);
+  Subresources r = range.resolve(decl.desc);
+  VkImageLayout first = requiredState(*pass, id, Subresources{r.baseMip, 1, r.baseLayer, 1}).layout;
+  for (uint32_t layer = r.baseLayer; layer < r.baseLayer + r.layerCount; ++layer)
+    for (uint32_t mip = r.baseMip; mip < r.baseMip + r.mipCount; ++mip)
+      if (requiredState(*pass, id, Subresources{mip, 1, layer, 1}).layout != first)
+        throw std::logic_error(fmt::format("pass '{}' binds '{}'{} as one view, but its levels are in different layouts",
+                                           pass->name, decl.name, rangeText(decl, r)));
+  return first;
+}
+
+}  // namespace aor::graph
+
+namespace aor {
+namespace {
+
+// Whether a declared access fits the descriptor type the shader gives the binding.
+bool accessFits(graph::Access access, VkDescriptorType type) {
+  using graph::Access;
+  switch (type) {
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return access == Access::StorageRead || access == Access::StorageWrite;
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE: return access == Access::SampledRead;
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return access == Access::UniformRead;
+    default: return false;
+  }
+}
+
+BoundResource bindOne(graph::PassContext& ctx, const ShaderBinding& binding, const Bind& bind, size_t index) {
+  const graph::ResourceDecl& decl = ctx.graph.resources().at(bind.id);
+  graph::Subresources range = decl.isBuffer() ? graph::Subresources{0, 1, 0, 1} : bind.range.resolve(decl.desc);
+  bool declared = false;
+  for (size_t a = 0; a < ctx.pass->accesses.size(); ++a) {
+    const auto& access = ctx.pass->accesses[a];
+    declared |= access.resource == bind.id && ctx.compiled->accessLive[a] && accessFits(access.access, binding.type) &&
+                graph::overlaps(access.range, range);
+  }
+  if (!declared)
+    throw std::logic_error(fmt::format("pass '{}' binds '{}'{} to binding {} ('{}', a {}) without declaring a matching access",
+                                       ctx.pass->name, decl.name, rangeText(decl, range), index, binding.name,
+                                       descriptorTypeName(binding.type)));
+  BoundResource r;
+  if (decl.isBuffer()) {
+    r.buffer = ctx.buffer(bind.id).buffer;
+    return r;
+  }
+  const GpuImage& image = ctx.image(bind.id);
+  r.view = imageViewOf(ctx.vk, image, {range.baseMip, range.mipCount, range.baseLayer, range.layerCount, binding.arrayed});
+  r.layout = ctx.layout(bind.id, range);
+  r.sampler = bind.linear ? ctx.vk.linearSampler : ctx.vk.nearestSampler;
+  return r;
+}
+
+}  // namespace
+
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<Bind> bindings,
+                     const void* pushConstants, size_t pushBytes, DispatchGroups groups) {
+  const auto& declared = pipeline.shader.bindings;
+  if (bindings.size() != declared.size())
+    throw std::logic_error(fmt::format("pass '{}' binds {} resources; its shader declares {}", ctx.pass->name,
+                                       bindings.size(), declared.size()));
+  if (pushBytes < pipeline.shader.pushConstantBytes)
+    throw std::logic_error(fmt::format("pass '{}' pushes {} bytes of constants; its shader reads {}", ctx.pass->name,
+                                       pushBytes, pipeline.shader.pushConstantBytes));
+  std::vector<BoundResource> bound;
+  bound.reserve(bindings.size());
+  size_t i = 0;
+  for (const Bind& b : bindings) {
+    bound.push_back(bindOne(ctx, declared[i], b, i));
+    ++i;
+  }
+  recordDispatch(ctx.vk, ctx.cmd, pipeline, bound, pushConstants, groups);
+}
+
+}  // namespace aor

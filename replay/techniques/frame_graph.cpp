@@ -1,0 +1,59 @@
+#include "techniques/frame_graph.h"
+
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+namespace aor {
+
+HistoryNeeds historyNeedsOf(const Settings& settings, int frames) {
+  const auto& t = settings.technique();
+  if (frames < 2 || !t.history) return {};
+  return t.history(settings);
+}
+
+FrameGraph buildFrameGraph(PipelineCache& pipelines, const FrameBuilder::Setup& setup, const FrameBuffers& buffers) {
+  FrameGraph out;
+  FrameBuilder frame(out.graph, pipelines, setup);
+  const Settings& settings = *setup.settings;
+  const Technique& technique = settings.technique();
+  HistoryNeeds needs = setup.historyWanted && technique.history ? technique.history(settings) : HistoryNeeds{};
+  blocks::declareFront(frame, buffers.front, setup.historyWanted && needs.distance);
+  technique.addPasses(frame, settings);
+  if (frame.output() == graph::kNoResource)
+    throw std::logic_error(fmt::format("technique {} set no output", technique.name));
+  static const GpuBuffer placeholder;  // dry builds (`aoreplay graph`, sizing the read-back) never execute
+  blocks::addReadbackPass(out.graph, frame.output(), buffers.readback ? *buffers.readback : placeholder);
+  for (const auto& d : frame.debugReadbacks()) blocks::addDebugReadbackPass(out.graph, d);
+  out.output = frame.output();
+  out.outputFormat = out.graph.resources()[frame.output()].desc.format;
+  out.outputLayout = frame.outputLayout();
+  out.notes = frame.notes();
+  out.debug = frame.debugReadbacks();
+  return out;
+}
+
+HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
+  std::map<std::pair<std::string, bool>, graph::ImageState> next;  // (base, current next frame) -> state
+  for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {
+    const auto& decl = graph.resources()[id];
+    if (decl.kind == graph::ResourceKind::History && compiled.resources[id].used)
+      next[{decl.historyBase, !decl.historyCurrent}] = compiled.resources[id].finalState;
+  }
+  return [next = std::move(next)](const std::string& base, bool current) {
+    auto it = next.find({base, current});
+    return it == next.end() ? graph::ImageState{} : it->second;
+  };
+}
+
+graph::RenderGraph buildHistoryPoisonGraph(const FrameBuilder::Setup& setup, const std::string& base, graph::ImageDesc desc,
+                                           float value) {
+  graph::RenderGraph g;
+  auto state = [&](bool current) { return setup.historyStates ? setup.historyStates(base, current) : graph::ImageState{}; };
+  auto history = g.createHistory(base, desc, true, state(false), state(true));
+  blocks::addFillPass(g, history.previous, value);
+  return g;
+}
+
+}  // namespace aor

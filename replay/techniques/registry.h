@@ -1,0 +1,24 @@
+#pragma once
+// The one list of techniques: the built-ins (registry.cpp, one line each) and those tests register.
+#include <string_view>
+#include <vector>
+
+#include "techniques/technique.h"
+
+namespace aor {
+
+// Every technique a user can name, in registration order.
+std::vector<const Technique*> userTechniques();
+// By name: a built-in, or one a test registered. Throws InputError (field --technique) listing the
+// user techniques.
+const Technique& findTechnique(std::string_view name);
+// Tests only: adds a technique (testOnly ones are never listed to users). The pointer must outlive
+// the program's use of it.
+void registerTechnique(const Technique* technique);
+
+// Each built-in's definition, in its folder (replay/techniques/NAME/).
+#define AOR_DECLARE_TECHNIQUE(name) const Technique& name##Technique();
+#include "techniques/builtin_techniques.inc"
+#undef AOR_DECLARE_TECHNIQUE
+
+}  // namespace aor

@@ -1,0 +1,98 @@
+#pragma once
+// An AO technique as a module (Falcor's render-pass plug-ins, Granite's per-effect setup functions,
+// one XeGTAO.h per technique): one folder of C++ under replay/techniques/NAME/ and one of shaders
+// under shaders/NAME/, registered by one line in registry.cpp. It declares its name and seed, its
+// parameters and presets, the capture inputs it needs and what it does without them, its passes
+// (added to each frame's render graph through a FrameBuilder, reading the shared front and writing
+// the final visibility), its history, and how it runs without history. The host (replay, CLI,
+// sweep, graph, bench, report) works from these declarations for every technique alike.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "techniques/parameters.h"
+
+namespace aor {
+
+class FrameBuilder;
+class Settings;
+struct Capture;
+struct DeviceInfo;
+struct VulkanContext;
+
+struct Preset {
+  std::string name;
+  std::vector<std::pair<std::string, double>> values;  // keys the preset sets; the rest keep their defaults
+};
+
+enum class InputUse { Unused, Optional, Required };
+
+// Capture inputs beyond depth (which every technique reads) and what the technique does without them.
+struct InputNeeds {
+  InputUse normals = InputUse::Optional;  // without: normals reconstructed from depth (FrameBuilder::viewNormals)
+  InputUse depth2 = InputUse::Unused;     // the second depth layer
+};
+
+struct DebugView {
+  std::string name;  // --debug NAME, written as debug/NAME/NNNN.exr and .png
+  std::string doc;
+};
+
+// What the technique keeps from one frame to the next, for the settings of a run.
+struct HistoryNeeds {
+  bool keeps = false;     // it declares history images (FrameBuilder::history)
+  bool distance = false;  // it reads last frame's linear distance (FrameBuilder::previousDistance)
+  std::string whyNot;     // when it keeps none: the setting behind that ("temporal=0"), for reset reasons
+};
+
+// What a technique keeps for a whole replay beyond history images (a BVH, compiled user shaders):
+// made once by Technique::prepare, reached from each frame through FrameBuilder::state().
+struct TechniqueState {
+  virtual ~TechniqueState() = default;
+};
+
+// What a technique's prepare() sees: the capture and settings of the replay, and the device when
+// there is one (null for `aoreplay graph`, which compiles frames without running them).
+struct ReplaySetup {
+  const Capture& capture;
+  const Settings& settings;
+  VulkanContext* vk = nullptr;
+};
+
+struct Technique {
+  std::string name;     // --technique NAME; [a-z][a-z0-9_]*
+  std::string seed;     // the system it implements ("000 GTAO three-pass pipeline"), or "" for tools
+  std::string summary;  // one line for `aoreplay techniques` and --help
+  std::vector<Parameter> parameters;  // every key, in the order help and reports list them
+  std::vector<Preset> presets;        // may be empty: the technique then runs once, with its defaults
+  std::string defaultPreset;          // one of presets, or "" when there are none
+  InputNeeds inputs;
+  std::vector<DebugView> debugViews;
+  bool testOnly = false;  // registered by tests, never listed to users
+
+  // Adds the technique's passes to the frame (after the shared front) and sets its output.
+  std::function<void(FrameBuilder& frame, const Settings& settings)> addPasses;
+  // History it keeps under `settings` (default: none).
+  std::function<HistoryNeeds(const Settings& settings)> history;
+  // The same technique without history, for the no-history replay temporal metrics compare against
+  // when a capture has no references. Empty (or returning nullopt): it has none, and its runs get no
+  // ghosting metrics.
+  std::function<std::optional<Settings>(const Settings& settings)> withoutHistory;
+  // Settings a capture cannot take (a second-layer path on a capture without one): throws InputError.
+  std::function<void(const Settings& settings, const Capture& capture)> checkCapture;
+  // Device extensions the settings need that `device` lacks (empty: it can run); the replay exits
+  // 3 naming them.
+  std::function<std::vector<std::string>(const Settings& settings, const DeviceInfo& device)> missingDeviceExtensions;
+  // Per-replay state (optional).
+  std::function<std::unique_ptr<TechniqueState>(const ReplaySetup& setup)> prepare;
+
+  const Parameter* parameter(std::string_view key) const;
+  const Preset* preset(std::string_view name) const;
+  const DebugView* debugView(std::string_view name) const;
+  std::string keyList() const;     // "radius, slices, steps, ..."
+  std::string presetList() const;  // "low, medium, high, ultra" or "(none)"
+};
+
+}  // namespace aor
