@@ -142,10 +142,9 @@ fs::path planeCapture(const std::string& name, const PlaneCaptureOptions& o) {
   return dir;
 }
 
-ReplayedFrames replay(const fs::path& capturePath, const AoSettings& settings, int begin, int end, bool keepHistoryOnCut) {
+ReplayedFrames replay(const fs::path& capturePath, const Settings& settings, int begin, int end, bool keepHistoryOnCut) {
   Capture capture = loadCapture(capturePath);
-  ReplayOptions options;
-  options.settings = settings;
+  ReplayOptions options(settings);
   options.frameBegin = begin;
   options.frameEnd = end;
   options.keepHistoryOnCut = keepHistoryOnCut;
@@ -157,12 +156,7 @@ ReplayedFrames replay(const fs::path& capturePath, const AoSettings& settings, i
 ReplayedFrames replayWithSettings(const fs::path& capturePath, const std::string& technique,
                                   const std::vector<std::string>& assignments, int begin, int end) {
   Capture capture = loadCapture(capturePath);
-  bool radiusGiven = false;
-  for (const auto& a : assignments) radiusGiven |= a.rfind("radius=", 0) == 0;
-  AoSettings settings = settingsForCapture(capture, AoSettings{}, radiusGiven);
-  for (const auto& a : assignments) applySetting(settings, a);
-  applyTechnique(settings, parseTechnique(technique));
-  return replay(capturePath, settings, begin, end);
+  return replay(capturePath, resolveSettings(findTechnique(technique), capture, "", assignments), begin, end);
 }
 
 CommandResult runAoreplay(const std::string& arguments, const std::string& environment) {
@@ -181,8 +175,10 @@ bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
-AoSettings gtaoOnly() {
-  AoSettings s;
+Settings referenceOf(const GtaoSettings& settings) { return settingsOf(referenceTechnique(), settings); }
+
+GtaoSettings gtaoOnly() {
+  GtaoSettings s;
   s.spatial = 0;
   s.temporal = 0;
   return s;

@@ -9,6 +9,8 @@
 
 #include "capture/capture.h"
 #include "pipeline/replayer.h"
+#include "techniques/gtao/gtao_settings.h"
+#include "techniques/registry.h"
 #include "vk/context.h"
 
 namespace aor::test {
@@ -40,8 +42,13 @@ struct ReplayedFrames {
   ReplayResult result;
   std::vector<FrameOutput> frames;
 };
-ReplayedFrames replay(const std::filesystem::path& capture, const AoSettings& settings, int begin = 0, int end = -1,
+ReplayedFrames replay(const std::filesystem::path& capture, const Settings& settings, int begin = 0, int end = -1,
                       bool keepHistoryOnCut = false);
+// `gtao` with these values (techniques/gtao/gtao_settings.h).
+inline ReplayedFrames replay(const std::filesystem::path& capture, const GtaoSettings& settings, int begin = 0,
+                             int end = -1, bool keepHistoryOnCut = false) {
+  return replay(capture, settingsOf(gtaoTechnique(), settings), begin, end, keepHistoryOnCut);
+}
 // As `aoreplay run CAPTURE --technique T --set A --set B ... --frames begin:end` resolves settings:
 // the technique's default preset, the capture's scene.ao_radius, then the assignments in order.
 ReplayedFrames replayWithSettings(const std::filesystem::path& capture, const std::string& technique,
@@ -57,7 +64,9 @@ CommandResult runAoreplay(const std::string& arguments, const std::string& envir
 bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b);
 
 // Default settings without the spatial and temporal passes: the read-back is GTAO's own output.
-AoSettings gtaoOnly();
+GtaoSettings gtaoOnly();
+// The screen-space reference technique with the integral's values of `settings`.
+Settings referenceOf(const GtaoSettings& settings);
 
 // Index of the first frame after frame 0 marked `cut`, -1 when none is.
 int cutFrame(const Capture& capture);

@@ -18,8 +18,8 @@ namespace aor::test {
 namespace {
 
 // No denoiser: the output is GTAO's half-resolution image through the `upsample` pass alone.
-AoSettings halfResolutionGtaoOnly() {
-  AoSettings s = gtaoOnly();
+GtaoSettings halfResolutionGtaoOnly() {
+  GtaoSettings s = gtaoOnly();
   s.halfRes = 1;
   return s;
 }
@@ -33,7 +33,7 @@ struct Frame {
   FrameCamera camera;
 };
 
-Frame replayFrameOne(const AoSettings& settings) {
+Frame replayFrameOne(const GtaoSettings& settings) {
   auto path = generatedCapture("boxes", "orbit", kWidth, kHeight, 2);
   Capture capture = loadCapture(path);
   const auto& f = capture.frames[1];
@@ -45,7 +45,7 @@ Frame replayFrameOne(const AoSettings& settings) {
 size_t index(int x, int y) { return size_t(y) * size_t(kWidth) + size_t(x); }
 
 TEST(HalfResolution, GtaoMatchesItsCpuMirrorAtTheEvaluatedPixels) {
-  AoSettings settings = halfResolutionGtaoOnly();
+  GtaoSettings settings = halfResolutionGtaoOnly();
   Frame frame = replayFrameOne(settings);
   auto path = generatedCapture("boxes", "orbit", kWidth, kHeight, 2);
   auto cpu = gtaoOnCpu(loadGBuffer(loadCapture(path), 1), frame.camera, settings);
@@ -67,7 +67,7 @@ TEST(HalfResolution, GtaoMatchesItsCpuMirrorAtTheEvaluatedPixels) {
   EXPECT_LT(minVisibility, 0.7);  // the boxes occlude the floor: a constant output fails
 
   // The noise follows the texel: the same texel computed with pixel 2t's noise differs.
-  AoSettings full = settings;
+  GtaoSettings full = settings;
   full.halfRes = 0;
   auto fullCpu = gtaoOnCpu(loadGBuffer(loadCapture(path), 1), frame.camera, full);
   int differing = 0;
@@ -133,11 +133,11 @@ TEST(HalfResolution, ReplayIsBitIdenticalAndAFrameAfterACutEqualsItAlone) {
   Capture c = loadCapture(capture);
   int k = cutFrame(c);
   ASSERT_GT(k, 0);
-  AoSettings settings;
+  GtaoSettings settings;
   settings.halfRes = 1;
   auto first = replay(capture, settings);
   auto second = replay(capture, settings);
-  AoSettings fullSettings;
+  GtaoSettings fullSettings;
   auto full = replay(capture, fullSettings);
   ASSERT_EQ(first.frames.size(), c.frames.size());
   for (size_t i = 0; i < first.frames.size(); ++i) {

@@ -10,7 +10,7 @@
 #include "cpu/gtao_cpu.h"
 #include "gpu_test_support.h"
 #include "blocks/linearize_depth.h"
-#include "passes/camera.h"
+#include "blocks/camera.h"
 #include "blocks/spatial_denoise.h"
 
 namespace aor::test {
@@ -18,7 +18,7 @@ namespace {
 
 TEST(Replay, SameCaptureAndSettingsGiveBitIdenticalOutputs) {
   auto capture = generatedCapture("boxes", "orbit", 96, 54, 4);
-  AoSettings settings;
+  GtaoSettings settings;
   auto first = replay(capture, settings);
   auto second = replay(capture, settings);
   ASSERT_EQ(first.frames.size(), 4u);
@@ -35,7 +35,7 @@ TEST(Replay, SameCaptureAndSettingsGiveBitIdenticalOutputs) {
 
 TEST(Replay, HistoryIsValidAfterTheFirstFrameAndResetAtACut) {
   auto capture = generatedCapture("boxes", "cut", 64, 36, 6);
-  auto replayed = replay(capture, AoSettings{});
+  auto replayed = replay(capture, GtaoSettings{});
   Capture c = loadCapture(capture);
   ASSERT_EQ(replayed.result.frames.size(), c.frames.size());
   int cuts = 0;
@@ -57,7 +57,7 @@ TEST(Replay, FrameAfterACutEqualsThatFrameReplayedAlone) {
   auto capture = generatedCapture("boxes", "cut", 64, 36, 6);
   int k = cutFrame(loadCapture(capture));
   ASSERT_GT(k, 0);
-  AoSettings settings;
+  GtaoSettings settings;
   auto full = replay(capture, settings);
   auto alone = replay(capture, settings, k, k + 1);
   ASSERT_EQ(alone.frames.size(), 1u);
@@ -71,7 +71,7 @@ TEST(Replay, FrameAfterACutEqualsThatFrameReplayedAlone) {
 TEST(Replay, DisablingTheResetAtACutLeaksHistory) {
   auto capture = generatedCapture("boxes", "cut", 64, 36, 6);
   int k = cutFrame(loadCapture(capture));
-  AoSettings settings;
+  GtaoSettings settings;
   settings.temporal = 0.98f;  // no rejection layer can hide a leak completely at this weight
   auto leaky = replay(capture, settings, 0, -1, /*keepHistoryOnCut=*/true);
   auto alone = replay(capture, settings, k, k + 1);
@@ -86,7 +86,7 @@ TEST(Replay, GtaoPassMatchesItsCpuMirror) {
   for (Case c : {Case{true, 3, 3}, Case{false, 3, 3}, Case{true, 6, 8}}) {
     bool bent = c.bent;
     auto capturePath = generatedCapture("boxes", "orbit", 80, 45, 2);
-    AoSettings settings = gtaoOnly();
+    GtaoSettings settings = gtaoOnly();
     settings.bent = bent ? 1 : 0;
     settings.slices = c.slices;
     settings.steps = c.steps;
@@ -160,7 +160,7 @@ struct DirectBlur {
 
 TEST(Replay, SpatialPassIsTheSeedsPathWeighted5x5Blur) {
   auto capturePath = generatedCapture("boxes", "orbit", 80, 45, 2);
-  AoSettings settings = gtaoOnly();
+  GtaoSettings settings = gtaoOnly();
   auto noisy = replay(capturePath, settings, 1, 2);
   settings.spatial = 1;
   auto blurred = replay(capturePath, settings, 1, 2);
@@ -198,7 +198,7 @@ TEST(Replay, FlatPlaneHasNoSelfOcclusion) {
     o.reversedZ = c.reversed;
     o.infiniteFar = c.infinite;
     auto capture = planeCapture(fmt::format("plane-{}-{}-{}", c.pitch, c.reversed, c.infinite), o);
-    AoSettings settings = gtaoOnly();
+    GtaoSettings settings = gtaoOnly();
     settings.slices = 9;
     auto out = replay(capture, settings);
     float minVisibility = 1.0f;

@@ -164,7 +164,7 @@ bool allFinite(const std::vector<float>& values) {
 // finite, in [0,1], bit-identical.
 void expectFiniteBoundedDeterministic(const fs::path& capture, const std::string& caseName) {
   for (int halfRes : {0, 1}) {
-    AoSettings settings;
+    GtaoSettings settings;
     settings.radius = float(loadCapture(capture).scene.value("ao_radius", 1.0));
     settings.halfRes = halfRes;
     std::string name = caseName + (halfRes ? " half_res=1" : "");
@@ -197,7 +197,7 @@ struct DeviationRow {
 // the double model.
 DeviationRow measureDeviation(const fs::path& capturePath, const std::string& name) {
   Capture capture = loadCapture(capturePath);
-  AoSettings settings;
+  GtaoSettings settings;
   settings.spatial = 0;
   settings.temporal = 0;
   settings.radius = float(capture.scene.value("ao_radius", 1.0));
@@ -361,11 +361,11 @@ TEST(StressPlane, OneDegreeGrazingFloorMeanVisibilityAtLeast098) {
       fs::path path = stressCapture(name, s);
       Capture capture = loadCapture(path);
       GBuffer g = loadGBuffer(capture, 0);
-      AoSettings full;
-      AoSettings gtaoOnly;
+      GtaoSettings full;
+      GtaoSettings gtaoOnly;
       gtaoOnly.spatial = 0;
       gtaoOnly.temporal = 0;
-      for (const AoSettings& settings : {full, gtaoOnly}) {
+      for (const GtaoSettings& settings : {full, gtaoOnly}) {
         auto out = replay(path, settings);
         for (const auto& frame : out.frames) {
           double mean = surfaceMean(frame.visibility, g, capture.frames[0].projection);
@@ -407,7 +407,7 @@ TEST(StressInjection, NanInfAndDenormalInputsGiveFiniteOutputsAndAreCounted) {
       std::fill(g.normals.begin(), g.normals.end(), nan);
     }
   });
-  AoSettings settings;
+  GtaoSettings settings;
   auto first = replay(path, settings);
   auto second = replay(path, settings);
   ASSERT_EQ(first.frames.size(), 5u);
@@ -459,9 +459,10 @@ TEST(StressInjection, NonFiniteHistoryIsDroppedByTheTemporalBlend) {
 TEST(StressInjection, NanHistoryOnTheGpuGivesTheFrameWithoutHistory) {
   auto capture = loadCapture(generatedCapture("boxes", "static", 64, 36, 2));
   auto frame1 = [&](float temporal, int poisonAt) {
-    ReplayOptions options;
-    options.settings.temporal = temporal;
-    options.settings.radius = 1.0f;
+    GtaoSettings settings;
+    settings.temporal = temporal;
+    settings.radius = 1.0f;
+    ReplayOptions options(settingsOf(gtaoTechnique(), settings));
     options.testPoisonHistoryAt = poisonAt;
     FrameOutput out;
     replayCapture(validatedContext(), capture, options, [&](const FrameOutput& f) {

@@ -4,12 +4,13 @@
 #include "capture/input_error.h"
 #include "report/svg_plot.h"
 #include "report/sweep.h"
+#include "techniques/registry.h"
 
 namespace aor {
 namespace {
 
 SweepRow row(const std::string& name, double ms, double rmse) {
-  SweepRow r;
+  SweepRow r{{name, Settings()}};
   r.config.name = name;
   r.totalMs = ms;
   r.rmse = rmse;
@@ -18,27 +19,53 @@ SweepRow row(const std::string& name, double ms, double rmse) {
 
 }  // namespace
 
-TEST(Sweep, PresetsTimesTheGridInOrder) {
-  AoSettings base;
-  base.radius = 2.5f;
-  auto configs = expandSweep(base, {"low", "ultra"}, {"thin=0,1", "technique=gtao,reference"});
-  ASSERT_EQ(configs.size(), 8u);
-  EXPECT_EQ(configs[0].name, "low thin=0 technique=gtao");
-  EXPECT_EQ(configs[7].name, "ultra thin=1 technique=reference");
-  EXPECT_EQ(configs[7].settings.slices, 9);
-  EXPECT_EQ(configs[7].settings.thin, 1.0f);
-  EXPECT_EQ(configs[7].settings.technique, AoTechnique::Reference);
-  EXPECT_EQ(configs[7].settings.temporal, 0.0f) << "the reference is never denoised";
-  EXPECT_EQ(configs[2].settings.radius, 2.5f) << "base settings carry over";
+// What `sweep` resolves with a capture, without one: the technique's defaults, the preset, the assignments.
+Settings resolveWithoutCapture(const Technique& t, std::string_view preset, const std::vector<std::string>& assignments) {
+  Settings s(t);
+  if (!preset.empty()) s.applyPreset(preset);
+  for (const auto& a : assignments) s.assign(a);
+  return s;
 }
 
-TEST(Sweep, BadPresetsAndGridsAreInputErrors) {
-  AoSettings base;
-  EXPECT_THROW(expandSweep(base, {"extreme"}, {}), InputError);
-  EXPECT_THROW(expandSweep(base, {"low"}, {"slices"}), InputError);
-  EXPECT_THROW(expandSweep(base, {"low"}, {"slices=2,,3"}), InputError);
-  EXPECT_THROW(expandSweep(base, {"low"}, {"slices=99"}), InputError);
-  EXPECT_THROW(expandSweep(base, {"low"}, {"technique=magic"}), InputError);
+SweepPlan expand(std::vector<std::string> presets, std::vector<std::string> grid, std::vector<std::string> set = {}) {
+  return expandSweep({std::move(presets), std::move(grid), std::move(set)}, resolveWithoutCapture);
+}
+
+TEST(Sweep, EachTechniqueRunsItsPresetsTimesTheGridInOrder) {
+  auto plan = expand({"low", "ultra"}, {"thin=0,1", "technique=gtao,reference"}, {"radius=2.5"});
+  // gtao: 2 presets x 2 thin values; reference: no presets, so once per thin value.
+  ASSERT_EQ(plan.configs.size(), 6u);
+  EXPECT_EQ(plan.configs[0].name, "low technique=gtao thin=0");
+  EXPECT_EQ(plan.configs[3].name, "ultra technique=gtao thin=1");
+  EXPECT_EQ(plan.configs[3].settings.i("slices"), 9);
+  EXPECT_EQ(plan.configs[3].settings.f("thin"), 1.0f);
+  EXPECT_EQ(plan.configs[5].name, "technique=reference thin=1");
+  EXPECT_EQ(plan.configs[5].settings.technique().name, "reference");
+  EXPECT_FALSE(plan.configs[5].settings.has("temporal")) << "the reference has no denoiser to switch off";
+  EXPECT_EQ(plan.configs[4].settings.f("radius"), 2.5f) << "--set applies to every technique that has the key";
+  EXPECT_EQ(plan.configs[1].settings.f("radius"), 2.5f);
+}
+
+TEST(Sweep, KeysApplyWhereDeclaredAndPresetsATechniqueLacksAreSkippedWithANote) {
+  // half_res is gtao's alone: the reference is not expanded along it, and no error is raised.
+  auto plan = expand({"high", "extreme"}, {"technique=gtao,reference", "half_res=0,1"});
+  ASSERT_EQ(plan.configs.size(), 3u);
+  EXPECT_EQ(plan.configs[0].name, "high technique=gtao half_res=0");
+  EXPECT_EQ(plan.configs[2].name, "technique=reference");
+  ASSERT_EQ(plan.notes.size(), 1u);
+  EXPECT_NE(plan.notes[0].find("gtao has no preset 'extreme'"), std::string::npos) << plan.notes[0];
+  // Without --presets every preset of the technique runs.
+  EXPECT_EQ(expand({}, {}).configs.size(), gtaoTechnique().presets.size());
+}
+
+TEST(Sweep, BadPresetsKeysAndGridsAreInputErrors) {
+  EXPECT_TRUE(expand({"extreme"}, {}).configs.empty());  // the command refuses an empty sweep (exit 2)
+  EXPECT_THROW(expand({"low"}, {"slices"}), InputError);
+  EXPECT_THROW(expand({"low"}, {"slices=2,,3"}), InputError);
+  EXPECT_THROW(expand({"low"}, {"slices=99"}), InputError);
+  EXPECT_THROW(expand({"low"}, {"technique=magic"}), InputError);
+  EXPECT_THROW(expand({"low"}, {"technique=reference", "slices=2"}), InputError) << "no technique of the sweep has slices";
+  EXPECT_THROW(expand({"low"}, {}, {"typo=1"}), InputError);
 }
 
 TEST(Sweep, ParetoRowsAreTheOnesNothingBeats) {
@@ -49,15 +76,29 @@ TEST(Sweep, ParetoRowsAreTheOnesNothingBeats) {
   for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].pareto, expected[i]) << rows[i].config.name;
 }
 
-TEST(Sweep, CsvHasOneLinePerRowAndTheUnionOfPasses) {
-  auto a = row("low", 1.5, 0.1), b = row("high, thin", 3.0, 0.05);
+TEST(Sweep, CsvHasOneLinePerRowTheUnionOfKeysAndTheUnionOfPasses) {
+  auto plan = expand({"low"}, {"technique=gtao,reference"});
+  SweepRow a{plan.configs[0]}, b{plan.configs[1]};
+  a.config.name = "low";
+  b.config.name = "high, thin";
+  a.totalMs = 1.5;
+  a.rmse = 0.1;
+  b.totalMs = 3.0;
+  b.rmse = 0.05;
   a.passMs = {{"gtao", 1.0}, {"spatial", 0.5}};
-  b.passMs = {{"gtao", 2.5}, {"temporal", 0.5}};
+  b.passMs = {{"gtao_reference", 2.5}, {"temporal", 0.5}};
   b.pareto = true;
   auto csv = sweepCsv({a, b});
-  EXPECT_NE(csv.find(",gtao_ms,spatial_ms,temporal_ms,total_ms,rmse,ssim,pareto\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\"high, thin\",gtao"), std::string::npos) << "names with commas are quoted";
-  EXPECT_NE(csv.find(",2.500000,0.000000,0.500000,3.000000,0.050000,0.000000,1\n"), std::string::npos) << csv;
+  std::string header = csv.substr(0, csv.find('\n'));
+  // Every gtao key, then the reference's (all of which gtao has too), then the passes.
+  std::string keys;
+  for (const auto& p : gtaoTechnique().parameters) keys += "," + p.key;
+  EXPECT_EQ(header, "configuration,technique" + keys + ",gtao_ms,spatial_ms,gtao_reference_ms,temporal_ms,total_ms,rmse,ssim,pareto");
+  EXPECT_NE(csv.find("\"high, thin\",reference"), std::string::npos) << "names with commas are quoted";
+  EXPECT_NE(csv.find("\nlow,gtao,1,1,2,0.615,"), std::string::npos) << csv;
+  // The reference has no slices, steps, spatial, temporal or half_res: those cells are empty.
+  EXPECT_NE(csv.find(",reference,1,,,0.615,1,0,,,1,,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0.000000,0.000000,2.500000,0.500000,3.000000,0.050000,0.000000,1\n"), std::string::npos) << csv;
 }
 
 TEST(SvgPlot, IsDeterministicEscapedAndMarksHighlightedPoints) {

@@ -25,10 +25,10 @@ fs::path shipped(const std::string& name) { return fs::path(AOR_SOURCE_DIR) / "c
 
 // Replays `capture` in-process and feeds every frame to a TemporalAnalysis, as `aoreplay run` does;
 // with `againstNoHistory` errors are measured against a temporal=0 replay instead of the reference.
-TemporalAnalysis analyze(const fs::path& capturePath, const AoSettings& settings, bool againstNoHistory = false) {
+TemporalAnalysis analyze(const fs::path& capturePath, const GtaoSettings& settings, bool againstNoHistory = false) {
   Capture capture = loadCapture(capturePath);
   auto replayed = replay(capturePath, settings);
-  AoSettings withoutHistory = settings;
+  GtaoSettings withoutHistory = settings;
   withoutHistory.temporal = 0;
   std::vector<FrameOutput> noHistory;
   if (againstNoHistory) noHistory = replay(capturePath, withoutHistory).frames;
@@ -47,7 +47,7 @@ TemporalAnalysis analyze(const fs::path& capturePath, const AoSettings& settings
 }
 
 TEST(Temporal, StaticNoiseFallsWithTheSpatialAndAgainWithTheTemporalPass) {
-  AoSettings raw, spatialOnly, full;
+  GtaoSettings raw, spatialOnly, full;
   raw.spatial = 0;
   raw.temporal = 0;
   spatialOnly.temporal = 0;
@@ -84,7 +84,7 @@ TEST(Temporal, FrameAfterTheShippedCutEqualsAReplayStartingThere) {
   auto path = shipped("boxes-cut");
   int k = cutFrame(loadCapture(path));
   ASSERT_GT(k, 1);
-  AoSettings settings;
+  GtaoSettings settings;
   auto full = replay(path, settings);
   auto fromCut = replay(path, settings, k, -1);
   EXPECT_EQ(full.result.frames[size_t(k)].resetReason, "cut");
@@ -99,10 +99,9 @@ TEST(Temporal, FrameAfterTheShippedCutEqualsAReplayStartingThere) {
 }
 
 // Replays with explicit camera-jump limits; returns the result and frame `keep`'s visibility.
-std::pair<ReplayResult, std::vector<float>> replayWithJumpLimits(const fs::path& path, const AoSettings& settings,
+std::pair<ReplayResult, std::vector<float>> replayWithJumpLimits(const fs::path& path, const GtaoSettings& settings,
                                                                   CameraJumpLimits limits, int keep) {
-  ReplayOptions options;
-  options.settings = settings;
+  ReplayOptions options(settingsOf(gtaoTechnique(), settings));
   options.cameraJump = limits;
   std::vector<float> kept;
   auto result = replayCapture(validatedContext(), loadCapture(path), options, [&](const FrameOutput& f) {
@@ -115,7 +114,7 @@ TEST(Temporal, AnUnmarkedCameraJumpBeyondTheLimitResetsHistory) {
   auto path = unmarkedCutCapture();
   int k = cutFrame(loadCapture(shipped("boxes-cut")));
   ASSERT_EQ(cutFrame(loadCapture(path)), -1);
-  AoSettings settings;
+  GtaoSettings settings;
   settings.temporal = 0.98f;  // no rejection layer can hide a leak completely at this weight
   // The jump turns the camera 22 degrees; the orbits around it turn under 1.5 per frame.
   auto [caught, afterJump] = replayWithJumpLimits(path, settings, {20.0f, 0.0f}, k);
@@ -150,7 +149,7 @@ TEST(Temporal, DefaultJumpLimitsCatchWhatNoSmoothCameraDoes) {
 }
 
 TEST(Temporal, DisocclusionResponseOnTheStrafeStaysWithinTheEmaBound) {
-  AoSettings settings;
+  GtaoSettings settings;
   settings.temporal = 0.6f;  // predicts 5 frames to 10%, so the 16-frame strafe shows the settled tail
   auto analysis = analyze(shipped("boxes-strafe"), settings);
   auto d = analysis.summaryJson()["disocclusion"];
@@ -175,7 +174,7 @@ TEST(Temporal, DisocclusionResponseOnTheStrafeStaysWithinTheEmaBound) {
 // value on its first frame (the pass rejected its history: the metric's mask and the shader's
 // agree), and the deviation appears at the first blended frame (w of the output is history at once).
 TEST(Temporal, DisoccludedPixelsAreExactlyTheFreshValueOnTheirFirstFrame) {
-  AoSettings settings;
+  GtaoSettings settings;
   settings.temporal = 0.6f;
   auto analysis = analyze(shipped("boxes-strafe"), settings, /*againstNoHistory=*/true);
   auto summary = analysis.summaryJson();

@@ -1,19 +1,26 @@
 // The real AO frame graph, compiled without a GPU: which passes and resources a capture and a run
 // need (issue "Build only what a scene and a run need"), checked with the graph tests' checker.
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "../graph/graph_test_support.h"
-#include "pipeline/ao_graph.h"
+#include "techniques/frame_graph.h"
+#include "techniques/gtao/gtao_settings.h"
+#include "techniques/registry.h"
 #include "vk/context.h"
 
 namespace aor {
 namespace {
 
+constexpr const char* kAoHistory = "ao_history";
+constexpr const char* kDistanceHistory = "distance_history";
+
 struct Built {
-  AoFrameGraph frame;
+  std::unique_ptr<Settings> settings;  // what the graph's passes were built from
+  FrameGraph frame;
   graph::CompiledGraph compiled;
 
   const graph::ResourceDecl* resource(const std::string& name) const {
@@ -50,20 +57,26 @@ struct Case {
   bool hasNormals = true;
   bool multiFrame = true;
   bool historyValid = true;
-  AoSettings settings;
+  GtaoSettings settings;
 };
 
 Built build(const Case& c, const HistoryStates& history = {}) {
   static VulkanContext noDevice;  // pipelines are only created when a pass executes
-  static PassPipelines pipelines(noDevice);
-  static GpuBuffer placeholder;
+  static PipelineCache pipelines(noDevice);
   FrameCamera camera{glm::mat4(1.0f), glm::mat4(1.0f), c.width, c.height, 1};
   camera.projection[2][3] = -1.0f;
   camera.projection[3][3] = 0.0f;
   camera.projection[3][2] = -0.1f;
-  AoFrameInputs inputs{camera, camera, c.hasNormals, c.multiFrame && c.settings.temporal > 0, c.historyValid, c.settings};
-  AoFrameBuffers buffers{&placeholder, &placeholder, &placeholder};
-  Built b{buildAoFrameGraph(inputs, pipelines, history, buffers), {}};
+  Built b;
+  b.settings = std::make_unique<Settings>(settingsOf(gtaoTechnique(), c.settings));
+  FrameBuilder::Setup setup;
+  setup.settings = b.settings.get();
+  setup.camera = setup.previousCamera = camera;
+  setup.capture = {c.hasNormals, false};
+  setup.historyWanted = historyNeedsOf(*b.settings, c.multiFrame ? 2 : 1).keeps;
+  setup.historyValid = setup.historyWanted && c.historyValid;
+  setup.historyStates = history;
+  b.frame = buildFrameGraph(pipelines, setup, {});
   b.compiled = b.frame.graph.compile();
   graph::testing::checkCompiled(b.frame.graph, b.compiled);  // lifetimes, aliasing, every hazard covered by barriers
   return b;

@@ -27,6 +27,9 @@ struct GtaoSettings {
 GtaoSettings gtaoSettings(const Settings& settings);
 // `gtao` Settings for tests and tools: the technique's defaults with these assignments.
 Settings gtaoRun(const std::vector<std::string>& assignments = {});
+// Settings of `technique` (gtao, or one built on the same integral such as reference) holding these
+// values for every key it declares; its other keys keep their defaults.
+Settings settingsOf(const Technique& technique, const GtaoSettings& values);
 
 // GTAO and the spatial blur work on one texel per divisor x divisor pixels: 1, or 2 with half_res=1.
 inline int aoResolutionDivisor(const GtaoSettings& s) { return s.halfRes ? 2 : 1; }

@@ -88,6 +88,24 @@ Settings gtaoRun(const std::vector<std::string>& assignments) {
   return s;
 }
 
+Settings settingsOf(const Technique& technique, const GtaoSettings& g) {
+  Settings s(technique);
+  auto write = [&](const char* key, double value) {
+    if (s.has(key)) s.set(key, value);
+  };
+  write(kRadiusKey, g.radius);
+  write(kSlices, g.slices);
+  write(kSteps, g.steps);
+  write(kFalloff, g.falloff);
+  write(kPower, g.power);
+  write(kThin, g.thin);
+  write(blocks::kSpatialKey, g.spatial);
+  write(blocks::kTemporalKey, g.temporal);
+  write(kBent, g.bent);
+  write(kHalfRes, g.halfRes);
+  return s;
+}
+
 const Technique& gtaoTechnique() {
   static const Technique t = makeGtao();
   return t;
