@@ -19,6 +19,15 @@ bool sameState(const ImageState& a, const ImageState& b) {
   return a.stage == b.stage && a.access == b.access && a.layout == b.layout;
 }
 
+// A buffer has no layout; and vkCmdFillBuffer (ClearWrite) runs in the CLEAR stage by the current
+// specification but in COPY by earlier ones and their validation layers (Debian 12's), so a buffer
+// clear is synchronised as both.
+ImageState bufferState(ImageState s) {
+  if (s.stage & VK_PIPELINE_STAGE_2_CLEAR_BIT) s.stage |= VK_PIPELINE_STAGE_2_COPY_BIT;
+  s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  return s;
+}
+
 // Synchronisation of one subresource while barriers are derived.
 struct Tracker {
   ImageState state;                         // layout + every access not yet covered by a barrier (src scope)
@@ -144,7 +153,7 @@ void barriers(const std::vector<ResourceDecl>& resources, const std::vector<Pass
         for (uint32_t mip = 0; mip < mips; ++mip) {
           Tracker& t = trackers[id][layer * mips + mip];
           ImageState need = requiredState(pass, id, Subresources{mip, 1, layer, 1});
-          if (res.isBuffer()) need.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+          if (res.isBuffer()) need = bufferState(need);
           const bool touchedHere = need.stage != 0;
           if (firstUse && predecessor != kNoResource) {
             // The memory may still be in use by the slot's previous member: every subresource waits

@@ -237,7 +237,7 @@ TEST(Buffers, HazardsGetBufferBarriersWithoutLayouts) {
   EXPECT_TRUE(barriersOf(c, clear).empty()) << "a fresh transient buffer has nothing to wait for";
   ASSERT_EQ(barriersOf(c, count).size(), 1u);
   const Barrier& afterClear = barriersOf(c, count)[0];
-  EXPECT_EQ(afterClear.before.stage, VK_PIPELINE_STAGE_2_CLEAR_BIT);
+  EXPECT_EQ(afterClear.before.stage, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT) << "fill: clear or copy";
   EXPECT_EQ(afterClear.after.access, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   EXPECT_EQ(afterClear.after.layout, VK_IMAGE_LAYOUT_UNDEFINED);
   std::vector<Barrier> counterBarriers;
