@@ -61,6 +61,14 @@ struct ReplaySetup {
   VulkanContext* vk = nullptr;
 };
 
+// What the stress suite holds a technique to beyond outputs that are finite, in [0,1] and replay
+// bit-identically (tests/gpu/stress_test.cpp runs every registered technique through it).
+struct AccuracyBounds {
+  // Mean visibility of a flat floor's surface seen at 1 degree grazing: a plane occludes nothing, so
+  // 1 is exact; how far below that the technique's sampling and precision may land.
+  double grazingPlaneMeanVisibility = 0.98;
+};
+
 struct Technique {
   std::string name;     // --technique NAME; [a-z][a-z0-9_]*
   std::string seed;     // the system it implements ("000 GTAO three-pass pipeline"), or "" for tools
@@ -70,6 +78,7 @@ struct Technique {
   std::string defaultPreset;          // one of presets, or "" when there are none
   InputNeeds inputs;
   std::vector<DebugView> debugViews;
+  AccuracyBounds bounds;
   bool testOnly = false;  // registered by tests, never listed to users
 
   // Adds the technique's passes to the frame (after the shared front) and sets its output.

@@ -347,6 +347,91 @@ double surfaceMean(const std::vector<float>& visibility, const GBuffer& g, const
   return count ? sum / count : 0.0;
 }
 
+// Every registered technique on every stress case whose inputs it can take (the cases carry depth
+// and normals): its default settings, twice, finite, in [0,1] and bit-identical. A technique added
+// later is covered by registering it.
+struct TechniqueStress {
+  std::string technique;
+  StressCase stress;
+};
+void PrintTo(const TechniqueStress& c, std::ostream* os) { *os << c.technique << " " << c.stress.name; }
+
+std::vector<TechniqueStress> techniqueStressCases() {
+  std::vector<TechniqueStress> cases;
+  for (const Technique* t : userTechniques())
+    for (const auto& c : stressCases()) cases.push_back({t->name, c});
+  return cases;
+}
+
+class StressEveryTechnique : public ::testing::TestWithParam<TechniqueStress> {};
+
+TEST_P(StressEveryTechnique, FiniteBoundedAndDeterministic) {
+  const auto& [name, c] = GetParam();
+  const Technique& technique = findTechnique(name);
+  if (technique.inputs.depth2 == InputUse::Required) GTEST_SKIP() << name << " needs a second depth layer; stress cases have none";
+  fs::path path = stressCapture(c.name, c.scene);
+  Settings settings = resolveSettings(technique, loadCapture(path), "", {});
+  auto first = replay(path, settings);
+  auto second = replay(path, settings);
+  ASSERT_EQ(first.frames.size(), second.frames.size());
+  for (size_t k = 0; k < first.frames.size(); ++k) {
+    size_t bad = 0;
+    EXPECT_TRUE(finiteInUnitRange(first.frames[k].visibility, bad))
+        << name << " " << c.name << " frame " << k << " pixel " << bad << " = " << first.frames[k].visibility[bad];
+    EXPECT_TRUE(allFinite(first.frames[k].bent)) << name << " " << c.name << " frame " << k;
+    EXPECT_TRUE(bitIdentical(first.frames[k].visibility, second.frames[k].visibility)) << name << " " << c.name << " frame " << k;
+    EXPECT_TRUE(bitIdentical(first.frames[k].bent, second.frames[k].bent)) << name << " " << c.name << " frame " << k;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Techniques, StressEveryTechnique, ::testing::ValuesIn(techniqueStressCases()),
+                         [](const ::testing::TestParamInfo<TechniqueStress>& info) {
+                           std::string name = info.param.technique + "_" + info.param.stress.name;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+// The grazing plane for every technique, held to the bound it declares (Technique::bounds): its
+// default settings and, where it has one, its variant without history.
+class GrazingPlaneEveryTechnique : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GrazingPlaneEveryTechnique, OneDegreeFloorMeanVisibilityAtLeastTheDeclaredBound) {
+  const Technique& technique = findTechnique(GetParam());
+  for (bool reversed : {false, true}) {
+    StressScene s;
+    s.wallDistance = 0;
+    s.pitchDegrees = 1;
+    s.fovDegrees = 60;
+    s.farZ = 0;
+    s.reversed = reversed;
+    std::string name = fmt::format("grazing1_{}_{}", technique.name, reversed ? "reversed" : "standard");
+    fs::path path = stressCapture(name, s);
+    Capture capture = loadCapture(path);
+    GBuffer g = loadGBuffer(capture, 0);
+    std::vector<Settings> variants{resolveSettings(technique, capture, "", {})};
+    if (technique.withoutHistory)
+      if (auto without = technique.withoutHistory(variants.front())) variants.push_back(*without);
+    for (const auto& settings : variants) {
+      auto out = replay(path, settings);
+      for (const auto& frame : out.frames) {
+        double mean = surfaceMean(frame.visibility, g, capture.frames[0].projection);
+        EXPECT_GE(mean, technique.bounds.grazingPlaneMeanVisibility)
+            << name << " " << settings.toJson().dump() << " frame " << frame.index;
+      }
+    }
+  }
+}
+
+std::vector<std::string> userTechniqueNames() {
+  std::vector<std::string> names;
+  for (const Technique* t : userTechniques()) names.push_back(t->name);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Techniques, GrazingPlaneEveryTechnique, ::testing::ValuesIn(userTechniqueNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
 // Acceptance: a flat plane at 1 degree grazing, standard and reversed infinite depth, mean >= 0.98.
 TEST(StressPlane, OneDegreeGrazingFloorMeanVisibilityAtLeast098) {
   for (bool reversed : {false, true})
