@@ -246,7 +246,7 @@ TEST(AoGraph, PeakMemoryAt1080pFallsWithBentZeroAndWithAliasing) {
     }
   }
   EXPECT_LT(noBent.compiled.peakBytes(), bent.compiled.peakBytes());
-  // The figures quoted in replay/pipeline/README.md.
+  // The figures quoted in replay/techniques/gtao/README.md.
   std::printf("1920x1080 peak MiB: bent=1 %.2f (unaliased %.2f), bent=0 %.2f (unaliased %.2f)\n",
               mib(bent.compiled.peakBytes()), mib(bent.compiled.unaliasedTransientBytes + bent.compiled.persistentBytes),
               mib(noBent.compiled.peakBytes()),
