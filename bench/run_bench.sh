@@ -35,7 +35,9 @@ run_baseline() {
   (cd "$baseline" && ./gtao --sizes "$sizes" --configs 1x2,2x2,3x3,9x3 --reps "$reps" ${device_index:+--device "$device_index"})
 }
 run_baseline > "$out/baseline-before.txt"
-"$build/bench/ao_bench" --sizes="$sizes" --reps="$reps" --cache="$build/bench-captures" "${bench_args[@]}" \
+# gtao's extra rows of every earlier run: the high preset without bent normals and at half resolution.
+"$build/bench/ao_bench" --sizes="$sizes" --reps="$reps" --cache="$build/bench-captures" --extra=bent=0 --extra=half_res=1 \
+  "${bench_args[@]}" \
   --benchmark_out="$out/ao_bench.json" --benchmark_out_format=json --benchmark_format=console \
   --benchmark_display_aggregates_only=true 2> >(tee "$out/scaling.txt" >&2)
 run_baseline | tee "$out/baseline.txt"

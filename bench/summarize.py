@@ -40,7 +40,8 @@ def main():
     for size in sizes:
         for preset, st, variant in (("low", "1x2", ""), ("medium", "2x2", ""), ("high", "3x3", ""),
                                     ("high, half_res=1", "3x3", "/half_res:1"), ("ultra", "9x3", "")):
-            key = f"s{st}{variant}/{size}"
+            name = preset.split(",")[0]
+            key = f"gtao/{name}{variant}/{size}"
             pipe = bench.get(f"pipeline/{key}")
             bases = [b.get((size, st)) for b in baselines]
             if pipe is None or None in bases:
@@ -50,7 +51,7 @@ def main():
             columns = bench.get(f"spatial_columns/{key}")  # the blur's first dispatch, since issue 6
             if columns is not None and cells[2] is not None:
                 cells[2] += columns
-            bent0 = None if variant else bench.get(f"pipeline/s{st}/bent:0/{size}")
+            bent0 = None if variant else bench.get(f"pipeline/gtao/{name}/bent:0/{size}")
             fmt = lambda v: "-" if v is None else f"{v:.3f}"
             print(f"| {size} | {preset} | {' / '.join(f'{b:.3f}' for b in bases)} | {pipe:.3f} | {fmt(bent0)} | "
                   + " | ".join(fmt(c) for c in cells) + f" | {pipe / base:.2f} |")
