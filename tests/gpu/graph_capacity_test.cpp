@@ -15,6 +15,7 @@
 #include "gpu_test_support.h"
 #include "graph/pass_context.h"
 #include "report/run_outputs.h"
+#include "vk/vk_check.h"
 #include "test_graph.h"
 
 namespace aor::spirv {
@@ -293,6 +294,31 @@ TEST(StorageBuffer, CountsReadBackAsADebugViewLandInTheReport) {
     ASSERT_EQ(counts.size(), 2u) << report["frames"][size_t(f.index)].dump();
     EXPECT_EQ(counts[0].get<uint32_t>(), sky) << "frame " << f.index;
     EXPECT_EQ(counts[1].get<uint32_t>(), uint32_t(g.depth.size()));
+  }
+}
+
+// A device feature a technique asks for and the device lacks: the replay refuses before any GPU work
+// with NoDeviceError (the CLI's exit 3) naming the extension.
+TEST(DeviceFeatures, AMissingExtensionIsRefusedNamingIt) {
+  static const Technique needy = [] {
+    Technique t = testTechnique("test_needs_extension", addBufferPasses);
+    t.missingDeviceExtensions = [](const Settings&, const DeviceInfo& device) {
+      std::vector<std::string> missing;
+      for (const char* e : {"VK_KHR_push_descriptor", "VK_AOR_not_an_extension"})
+        if (!device.hasExtension(e)) missing.push_back(e);
+      return missing;
+    };
+    return t;
+  }();
+  auto capture = loadCapture(generatedCapture("boxes", "orbit", 64, 36, 1));
+  ReplayOptions options{Settings(needy)};
+  try {
+    replayCapture(validatedContext(), capture, options, nullptr);
+    FAIL() << "a technique needing a missing extension ran";
+  } catch (const NoDeviceError& e) {
+    std::string what = e.what();
+    EXPECT_NE(what.find("needs VK_AOR_not_an_extension, which device"), std::string::npos) << what;
+    EXPECT_EQ(what.find("VK_KHR_push_descriptor"), std::string::npos) << "the device has that one: " << what;
   }
 }
 
