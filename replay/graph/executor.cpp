@@ -8,15 +8,21 @@ namespace {
 
 constexpr uint32_t kMaxTimedPasses = 256;
 
-VkImageMemoryBarrier2 imageBarrier(const graph::Barrier& b, VkImage image) {
-  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+// The source and destination scopes every barrier kind shares.
+template <typename VkBarrier>
+VkBarrier withScopes(VkBarrier barrier, const graph::Barrier& b) {
   barrier.srcStageMask = b.before.stage;
   barrier.srcAccessMask = b.before.access;
   barrier.dstStageMask = b.after.stage;
   barrier.dstAccessMask = b.after.access;
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  return barrier;
+}
+
+VkImageMemoryBarrier2 imageBarrier(const graph::Barrier& b, VkImage image) {
+  auto barrier = withScopes(VkImageMemoryBarrier2{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2}, b);
   barrier.oldLayout = b.before.layout;
   barrier.newLayout = b.after.layout;
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
   barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, b.range.baseMip, b.range.mipCount, b.range.baseLayer,
                               b.range.layerCount};
@@ -24,12 +30,7 @@ VkImageMemoryBarrier2 imageBarrier(const graph::Barrier& b, VkImage image) {
 }
 
 VkBufferMemoryBarrier2 bufferBarrier(const graph::Barrier& b, VkBuffer buffer) {
-  VkBufferMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-  barrier.srcStageMask = b.before.stage;
-  barrier.srcAccessMask = b.before.access;
-  barrier.dstStageMask = b.after.stage;
-  barrier.dstAccessMask = b.after.access;
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  auto barrier = withScopes(VkBufferMemoryBarrier2{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2}, b);
   barrier.buffer = buffer;
   barrier.size = VK_WHOLE_SIZE;
   return barrier;

@@ -64,21 +64,26 @@ Technique makeGtao() {
 
 }  // namespace
 
+// Every key with its GtaoSettings field: the one place the two are paired.
+template <typename Settings, typename Visit>
+void forEachKey(Settings& g, Visit&& visit) {
+  visit(kRadiusKey, g.radius);
+  visit(kSlices, g.slices);
+  visit(kSteps, g.steps);
+  visit(kFalloff, g.falloff);
+  visit(kPower, g.power);
+  visit(kThin, g.thin);
+  visit(blocks::kSpatialKey, g.spatial);
+  visit(blocks::kTemporalKey, g.temporal);
+  visit(kBent, g.bent);
+  visit(kHalfRes, g.halfRes);
+}
+
 GtaoSettings gtaoSettings(const Settings& s) {
   GtaoSettings g;
-  auto read = [&](const char* key, auto& field) {
+  forEachKey(g, [&](const char* key, auto& field) {
     if (s.has(key)) field = static_cast<std::decay_t<decltype(field)>>(s.value(key));
-  };
-  read(kRadiusKey, g.radius);
-  read(kSlices, g.slices);
-  read(kSteps, g.steps);
-  read(kFalloff, g.falloff);
-  read(kPower, g.power);
-  read(kThin, g.thin);
-  read(blocks::kSpatialKey, g.spatial);
-  read(blocks::kTemporalKey, g.temporal);
-  read(kBent, g.bent);
-  read(kHalfRes, g.halfRes);
+  });
   return g;
 }
 
@@ -90,19 +95,9 @@ Settings gtaoRun(const std::vector<std::string>& assignments) {
 
 Settings settingsOf(const Technique& technique, const GtaoSettings& g) {
   Settings s(technique);
-  auto write = [&](const char* key, double value) {
-    if (s.has(key)) s.set(key, value);
-  };
-  write(kRadiusKey, g.radius);
-  write(kSlices, g.slices);
-  write(kSteps, g.steps);
-  write(kFalloff, g.falloff);
-  write(kPower, g.power);
-  write(kThin, g.thin);
-  write(blocks::kSpatialKey, g.spatial);
-  write(blocks::kTemporalKey, g.temporal);
-  write(kBent, g.bent);
-  write(kHalfRes, g.halfRes);
+  forEachKey(g, [&](const char* key, const auto& field) {
+    if (s.has(key)) s.set(key, double(field));
+  });
   return s;
 }
 
