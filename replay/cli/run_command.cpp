@@ -29,7 +29,9 @@ struct RunArgs {
   std::string capture;
   SettingsOptions settings;
   int repeat = 1;
-  int warmup = 0;
+  int warmup = 1;  // lavapipe compiles a shader on its first dispatch: keep that out of the timed runs
+  bool overlap = false, isolate = false;
+  double preloadBudgetMiB = double(kDefaultPreloadBudgetBytes >> 20);
   std::string out;
   std::string device;
   bool validate = false;
@@ -95,6 +97,9 @@ int runCommand(const RunArgs& args) {
   options.debugViews = {args.settings.debugViews.begin(), args.settings.debugViews.end()};
   options.repeat = args.repeat;
   options.warmup = args.warmup;
+  if (args.overlap && args.isolate) throw InputError("", std::nullopt, "--overlap", "--overlap and --isolate exclude each other");
+  options.timingMode = args.overlap ? TimingMode::Overlapped : args.isolate ? TimingMode::Isolated : TimingMode::Auto;
+  options.preloadBudgetBytes = uint64_t(args.preloadBudgetMiB * double(1 << 20));
   options.keepHistoryOnCut = args.keepHistoryOnCut;
   options.cameraJump = args.cameraJump;
   options.progress = printProgress;
@@ -128,9 +133,10 @@ int runCommand(const RunArgs& args) {
   for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
   HostOverhead overhead = hostOverhead(result);
   fmt::print("set-up: {:.1f} ms (pipelines; the first frame's decode overlaps it)\n", result.setupMs);
-  fmt::print("wall: {:.1f} ms for {} frame(s), {:.1f} frames/s; host overhead {:.1f} ms ({:.1f} % of wall)\n",
+  fmt::print("wall: {:.1f} ms for {} frame(s), {:.1f} frames/s; host overhead {:.1f} ms ({:.1f} % of wall); timing {}{}\n",
              result.wallMs, result.frames.size(), report["replay_fps"].get<double>(), overhead.ms,
-             100.0 * overhead.fractionOfWall);
+             100.0 * overhead.fractionOfWall, timingModeName(result.timingMode),
+             result.timingMode == TimingMode::Isolated ? fmt::format(" ({} frame(s) a chunk)", result.chunkFrames) : "");
   if (args.validate && validationMessages > 0) {
     fmt::print(stderr, "aoreplay: {} validation message(s); the run failed and wrote no results\n", validationMessages);
     return kExitFailed;
@@ -158,8 +164,19 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
   auto* cmd = app.add_subcommand("run", "replay a capture through a technique's render graph, time each pass");
   cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
   args->settings.add(*cmd, help);
-  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000));
-  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame before timing")->check(CLI::Range(0, 100000));
+  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame before timing")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_flag("--overlap", args->overlap,
+                "decode the next frame and sink the last one on workers while a frame is timed (the most frames per "
+                "second; the default on a GPU)");
+  cmd->add_flag("--isolate", args->isolate,
+                "no thread of the tool runs while a frame is timed: frames are preloaded in chunks and sunk after "
+                "(the default on a CPU device: lavapipe, llvmpipe, SwiftShader)");
+  cmd->add_option("--preload-budget", args->preloadBudgetMiB, "MiB a chunk of preloaded frames may hold (isolated timing)")
+      ->check(CLI::Range(1.0, 1048576.0))
+      ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>/)");
   cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
   cmd->add_flag("--validate", args->validate, "Khronos validation + synchronization validation; any message fails");

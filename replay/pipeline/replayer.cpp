@@ -35,15 +35,17 @@ struct StagingSlot {
   std::map<std::string, GpuBuffer> debug;
 };
 
-// Two slots, used by alternate frames: while the GPU runs frame N from one slot, the decode worker
-// fills the other with frame N+1, and the sink of frame N-1 reads its results from the read-backs of
-// that same other slot (before frame N+1 is submitted). Destroyed in one place.
+// One slot per frame in flight, used by frames in turn (frame index modulo the slot count). The
+// overlapped replay has two: while the GPU runs frame N from one, the decode worker fills the other
+// with frame N+1, and the sink of frame N-1 reads its results from the read-backs of that same other
+// slot (before frame N+1 is submitted). The isolated replay has one per frame of a preloaded chunk.
+// Destroyed in one place.
 struct StagingBuffers {
   VulkanContext& vk;
-  StagingSlot slots[2];
+  std::vector<StagingSlot> slots;
   bool normals = false, depth2 = false;
-  StagingBuffers(VulkanContext& v, const Capture& capture, bool uploadDepth2, uint32_t outputTexelBytes)
-      : vk(v), normals(capture.hasNormals), depth2(uploadDepth2) {
+  StagingBuffers(VulkanContext& v, const Capture& capture, bool uploadDepth2, uint32_t outputTexelBytes, int slotCount)
+      : vk(v), slots(size_t(slotCount)), normals(capture.hasNormals), depth2(uploadDepth2) {
     VkDeviceSize pixels = VkDeviceSize(capture.width) * VkDeviceSize(capture.height);
     for (auto& slot : slots) {
       slot.depth = createHostBuffer(vk, pixels * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -58,7 +60,7 @@ struct StagingBuffers {
       for (auto& [name, b] : slot.debug) destroyBuffer(vk, b);
     }
   }
-  StagingSlot& forFrame(int index) { return slots[index % 2]; }
+  StagingSlot& forFrame(int index) { return slots[size_t(index) % slots.size()]; }
   const GpuBuffer* debugTarget(int index, const std::string& name, uint64_t bytes) {
     auto& debug = forFrame(index).debug;
     auto it = debug.find(name);
@@ -223,8 +225,6 @@ void prepareFirstFrame(FrameBuilder::Setup setup, PipelineCache& pipelines, Phys
   compileAndRecord(buildFrameGraph(pipelines, setup, buffers).graph, resources, executor);
 }
 
-// The format and layout of a technique's output, from a graph that is built and never run.
-FrameGraph dryFrame(PipelineCache& pipelines, const FrameBuilder::Setup& setup) { return buildFrameGraph(pipelines, setup, {}); }
 
 void checkRange(const Capture& capture, int begin, int end, int total) {
   if (begin < 0 || begin >= end || end > total)
@@ -269,180 +269,311 @@ HostOverhead hostOverhead(const ReplayResult& result) {
   return h;
 }
 
-ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink) {
-  int total = int(capture.frames.size());
-  int begin = options.frameBegin, end = options.frameEnd < 0 ? total : options.frameEnd;
-  checkRange(capture, begin, end, total);
-  checkTechnique(vk, capture, options);
-  const Settings& settings = options.settings;
-  const Technique& technique = settings.technique();
-  bool historyWanted = historyNeedsOf(settings, end - begin).keeps;
+TimingMode resolveTimingMode(TimingMode requested, const DeviceInfo& device) {
+  if (requested != TimingMode::Auto) return requested;
+  return device.isCpu ? TimingMode::Isolated : TimingMode::Overlapped;
+}
 
-  ReplayResult result;
-  result.device = vk.info;
-  result.settings = settings;
-  auto setupStart = Clock::now();  // the origin of every start time in the result
+const char* timingModeName(TimingMode mode) {
+  switch (mode) {
+    case TimingMode::Auto: return "auto";
+    case TimingMode::Isolated: return "isolated";
+    case TimingMode::Overlapped: return "overlapped";
+  }
+  return "?";
+}
 
-  std::unique_ptr<TechniqueState> state;
-  if (technique.prepare) state = technique.prepare(ReplaySetup{capture, settings, &vk});
-  CaptureLayout layout{capture.hasNormals, capture.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
-  auto frameCamera = [&capture](int index) {
-    const auto& frame = capture.frames[size_t(index)];
-    return FrameCamera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
-  };
-  auto setupFor = [&](int index, const FrameCamera& previous, bool valid) {
+namespace {
+
+// What the sink of one frame reports back: when it ran, how long the conversion and the sink took,
+// and the debug counters it read.
+struct SinkTimes {
+  double startMs = 0, readbackMs = 0, writeMs = 0;
+  std::vector<DebugCounters> counters;
+};
+
+// One replay of a frame range: the set-up, then the frames in one of two orders (TimingMode). The
+// pieces every order shares are decode (into the frame's staging slot), runFrame (the timed GPU work
+// and the history decision) and sinkFrame (read-back to floats and the caller's sink).
+class Replay {
+ public:
+  Replay(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink, int begin, int end)
+      : vk_(vk), capture_(capture), options_(options), sink_(sink), begin_(begin), end_(end),
+        settings_(options.settings), historyWanted_(historyNeedsOf(settings_, end - begin).keeps),
+        pipelines_(vk), resources_(vk), executor_(vk) {}
+
+  ReplayResult run() {
+    result_.device = vk_.info;
+    result_.settings = settings_;
+    result_.timingMode = resolveTimingMode(options_.timingMode, vk_.info);
+    setupStart_ = Clock::now();  // the origin of every start time in the result
+    const Technique& technique = settings_.technique();
+    if (technique.prepare) state_ = technique.prepare(ReplaySetup{capture_, settings_, &vk_});
+    layout_ = {capture_.hasNormals, capture_.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
+    FrameGraph dry = buildFrameGraph(pipelines_, setupFor(begin_, {}, false), {});  // the output's format, never run
+    outputTexelBytes_ = graph::bytesPerPixel(dry.outputFormat);
+    outputDesc_ = dry.graph.resources()[dry.output].desc;
+    int slots = 2;
+    if (result_.timingMode == TimingMode::Isolated) {
+      chunkFrames_ = framesPerChunk(dry);
+      slots = std::min(chunkFrames_, end_ - begin_);
+      result_.chunkFrames = chunkFrames_;
+    }
+    staging_ = std::make_unique<StagingBuffers>(vk_, capture_, layout_.depth2, outputTexelBytes_, std::max(slots, 1));
+    if (result_.timingMode == TimingMode::Isolated)
+      runIsolated();
+    else
+      runOverlapped();
+    return std::move(result_);
+  }
+
+ private:
+  FrameCamera frameCamera(int index) const {
+    const auto& frame = capture_.frames[size_t(index)];
+    return FrameCamera{frame.view, frame.projection, capture_.width, capture_.height, uint32_t(index)};
+  }
+
+  FrameBuilder::Setup setupFor(int index, const FrameCamera& previous, bool valid) {
     FrameBuilder::Setup s;
-    s.settings = &settings;
+    s.settings = &settings_;
     s.camera = frameCamera(index);
     s.previousCamera = previous;
-    s.capture = layout;
-    s.historyWanted = historyWanted;
+    s.capture = layout_;
+    s.historyWanted = historyWanted_;
     s.historyValid = valid;
-    s.debugViews = options.debugViews;
-    s.state = state.get();
+    s.debugViews = options_.debugViews;
+    s.state = state_.get();
+    s.historyStates = historyStatesOf(resources_);
+    if (staging_)
+      s.debugTarget = [staging = staging_.get(), index](const std::string& name, uint64_t bytes) {
+        return staging->debugTarget(index, name, bytes);
+      };
     return s;
-  };
-  PipelineCache pipelines(vk);
-  FrameGraph dry = dryFrame(pipelines, setupFor(begin, {}, false));
-  StagingBuffers staging(vk, capture, layout.depth2, graph::bytesPerPixel(dry.outputFormat));
-  graph::ImageDesc outputDesc = dry.graph.resources()[dry.output].desc;
+  }
 
-  // Runs on a worker while the GPU runs the previous frame from the other staging slot.
-  auto decode = [&capture, &staging, historyWanted, setupStart](int index) {
+  FrameBuffers frameBuffers(int index) {
+    StagingSlot& slot = staging_->forFrame(index);
+    return FrameBuffers{{&slot.depth, staging_->normals ? &slot.normals : nullptr, staging_->depth2 ? &slot.depth2 : nullptr},
+                        &slot.readback};
+  }
+
+  // How many frames a preloaded chunk holds: what --preload-budget allows for their staging memory,
+  // their decoded G-buffers and their debug read-backs, at most kMaxChunkFrames (each slot is a few
+  // host allocations). A budget too small for one frame is bad input.
+  static constexpr int kMaxChunkFrames = 64;
+  int framesPerChunk(const FrameGraph& dry) const {
+    uint64_t pixels = uint64_t(capture_.width) * uint64_t(capture_.height);
+    uint64_t staging = pixels * (sizeof(float) + (capture_.hasNormals ? 4 * sizeof(uint16_t) : 0) +
+                                 (layout_.depth2 ? sizeof(float) : 0) + outputTexelBytes_);
+    uint64_t decoded = pixels * sizeof(float) * (1 + (capture_.hasNormals ? 3 : 0) + (capture_.hasDepth2 ? 1 : 0));
+    uint64_t debug = 0;
+    for (const auto& d : dry.debug)
+      debug += d.format == VK_FORMAT_UNDEFINED ? dry.graph.resources()[d.resource].buffer.bytes
+                                               : graph::imageBytes({d.width, d.height, d.format});
+    uint64_t perFrame = staging + decoded + debug;
+    uint64_t fit = options_.preloadBudgetBytes / std::max<uint64_t>(perFrame, 1);
+    if (fit == 0)
+      throw InputError((capture_.folder / "capture.json").string(), std::nullopt, "--preload-budget",
+                       fmt::format("one frame of this capture needs {:.1f} MiB preloaded; the budget is {:.1f} MiB",
+                                   double(perFrame) / (1 << 20), double(options_.preloadBudgetBytes) / (1 << 20)));
+    return int(std::min<uint64_t>(fit, kMaxChunkFrames));
+  }
+
+  DecodedFrame decode(int index) {
     auto t = Clock::now();
     DecodedFrame d;
-    d.startMs = msBetween(setupStart, t);
-    d.gbuffer = loadGBuffer(capture, index);
+    d.startMs = msBetween(setupStart_, t);
+    d.gbuffer = loadGBuffer(capture_, index);
     d.invalidDepthPixels = countInvalidDepth(d.gbuffer);
-    if (historyWanted) d.medianDistance = medianViewDistance(d.gbuffer.depth, capture.frames[size_t(index)].projection);
+    if (historyWanted_) d.medianDistance = medianViewDistance(d.gbuffer.depth, capture_.frames[size_t(index)].projection);
     d.decodeMs = msSince(t);
     t = Clock::now();
-    StagingSlot& slot = staging.forFrame(index);
+    StagingSlot& slot = staging_->forFrame(index);
     std::memcpy(slot.depth.mapped, d.gbuffer.depth.data(), d.gbuffer.depth.size() * sizeof(float));
-    if (staging.normals) d.invalidNormalPixels = packNormals(d.gbuffer, static_cast<uint16_t*>(slot.normals.mapped));
-    if (staging.depth2) std::memcpy(slot.depth2.mapped, d.gbuffer.depth2.data(), d.gbuffer.depth2.size() * sizeof(float));
+    if (staging_->normals) d.invalidNormalPixels = packNormals(d.gbuffer, static_cast<uint16_t*>(slot.normals.mapped));
+    if (staging_->depth2) std::memcpy(slot.depth2.mapped, d.gbuffer.depth2.data(), d.gbuffer.depth2.size() * sizeof(float));
     d.uploadMs = msSince(t);
     return d;
-  };
-  auto next = std::async(std::launch::async, decode, begin);  // overlaps the set-up below
+  }
 
-  PhysicalResources resources(vk);
-  GraphExecutor executor(vk);
-  HistoryTracker history;
-  auto frameBuffers = [&staging](int index) {
-    StagingSlot& slot = staging.forFrame(index);
-    return FrameBuffers{{&slot.depth, staging.normals ? &slot.normals : nullptr, staging.depth2 ? &slot.depth2 : nullptr},
-                        &slot.readback};
-  };
-  auto withTargets = [&](FrameBuilder::Setup s, int index) {
-    s.historyStates = historyStatesOf(resources);
-    s.debugTarget = [&staging, index](const std::string& name, uint64_t bytes) { return staging.debugTarget(index, name, bytes); };
-    return s;
-  };
-  prepareFirstFrame(withTargets(setupFor(begin, {}, false), begin), pipelines, resources, executor, frameBuffers(begin));
-  result.setupMs = msSince(setupStart);
-  auto replayStart = Clock::now();
-  // A frame's sink (read-back conversion, image writing, analysis) runs on a worker thread while the
-  // next frame runs on the GPU; sinks run one at a time, in frame order.
-  struct SinkTimes {
-    double startMs = 0, readbackMs = 0, writeMs = 0;
-    std::vector<DebugCounters> counters;
-  };
-  std::future<SinkTimes> pendingSink;
-  size_t pendingRecord = 0;
-  auto finishPendingSink = [&] {
-    if (!pendingSink.valid()) return;
-    SinkTimes times = pendingSink.get();
-    auto& record = result.frames[pendingRecord];
-    record.sinkStartMs = times.startMs;
-    record.readbackMs = times.readbackMs;
-    record.writeMs = times.writeMs;
-    record.debugCounters = std::move(times.counters);
-  };
+  void prepare() {
+    prepareFirstFrame(setupFor(begin_, {}, false), pipelines_, resources_, executor_, frameBuffers(begin_));
+    result_.setupMs = msSince(setupStart_);
+  }
 
-  for (int index = begin; index < end; ++index) {
-    FrameRecord record;
+  // The frame's timed GPU work: history decision, `warmup + repeat` runs of its graph, and the
+  // history bookkeeping for the next frame. Fills `record` from the decode and the runs.
+  FrameGraphRuns runFrame(int index, const DecodedFrame& decoded, FrameRecord& record) {
     record.index = index;
-    record.hostStartMs = msSince(setupStart);
-    DecodedFrame decoded = next.get();
     record.workerStartMs = decoded.startMs;
     record.decodeMs = decoded.decodeMs;
     record.uploadMs = decoded.uploadMs;
     record.invalidDepthPixels = decoded.invalidDepthPixels;
     record.invalidNormalPixels = decoded.invalidNormalPixels;
-    record.waitMs = msSince(setupStart) - record.hostStartMs;
-    if (index + 1 < end) next = std::async(std::launch::async, decode, index + 1);
-
-    const auto& frame = capture.frames[size_t(index)];
+    const auto& frame = capture_.frames[size_t(index)];
     FrameCamera camera = frameCamera(index);
-    record.resetReason = history.resetReason(frame, capture.width, capture.height, settings, historyWanted, options);
+    record.resetReason = history_.resetReason(frame, capture_.width, capture_.height, settings_, historyWanted_, options_);
     record.historyValid = record.resetReason.empty();
-    if (history.exists && (history.width != capture.width || history.height != capture.height)) resources.dropHistory();
+    if (history_.exists && (history_.width != capture_.width || history_.height != capture_.height)) resources_.dropHistory();
 
-    auto setup = withTargets(setupFor(index, history.camera, record.historyValid), index);
-    if (index == options.testPoisonHistoryAt && record.historyValid) poisonHistory(setup, outputDesc, resources, executor);
-    bool lastFrame = index + 1 == end;
-    auto runs = runFrameGraph(setup, pipelines, resources, executor, frameBuffers(index), options.warmup, options.repeat,
-                              lastFrame);
+    auto setup = setupFor(index, history_.camera, record.historyValid);
+    if (index == options_.testPoisonHistoryAt && record.historyValid) poisonHistory(setup, outputDesc_, resources_, executor_);
+    bool lastFrame = index + 1 == end_;
+    auto runs = runFrameGraph(setup, pipelines_, resources_, executor_, frameBuffers(index), options_.warmup,
+                              options_.repeat, lastFrame);
     record.passes = std::move(runs.passes);
     record.recordMs = runs.recordMs;
     record.gpuWallMs = runs.gpuMs;
     if (lastFrame) {
-      result.culled = std::move(runs.culled);
-      result.graphDescription = std::move(runs.description);
-      result.peakGpuBytes = runs.peakBytes;
-      result.unaliasedGpuBytes = runs.unaliasedBytes;
-      result.resources = std::move(runs.resources);
+      result_.culled = std::move(runs.culled);
+      result_.graphDescription = std::move(runs.description);
+      result_.peakGpuBytes = runs.peakBytes;
+      result_.unaliasedGpuBytes = runs.unaliasedBytes;
+      result_.resources = std::move(runs.resources);
     }
-
-    if (historyWanted) resources.swapHistory();
-    history = {true, capture.width, capture.height, settings, camera, decoded.medianDistance};
-    finishPendingSink();  // the previous frame's sink: its slot is the next frame's
-    if (sink || !runs.debug.empty()) {
-      pendingRecord = result.frames.size();  // the record pushed below
-      StagingSlot& slot = staging.forFrame(index);
-      pendingSink = std::async(std::launch::async, [&sink, &capture, &slot, index, setupStart, frame = std::move(decoded),
-                                                    valid = record.historyValid, reason = record.resetReason,
-                                                    format = runs.outputFormat, layout = runs.outputLayout,
-                                                    debug = std::move(runs.debug)] {
-        auto start = Clock::now();
-        SinkTimes times;
-        times.startMs = msBetween(setupStart, start);
-        size_t pixels = size_t(capture.width) * size_t(capture.height);
-        auto decodedOutput = decodeOutput(slot.readback.mapped, format, layout, pixels);
-        FrameOutput output;
-        output.index = index;
-        output.width = capture.width;
-        output.height = capture.height;
-        output.visibility = std::move(decodedOutput.visibility);
-        output.bent = std::move(decodedOutput.bent);
-        for (const auto& d : debug) {
-          if (!d.target) continue;
-          if (d.format != VK_FORMAT_UNDEFINED) {
-            DebugImage image{d.name, int(d.width), int(d.height), decodableChannels(d.format),
-                             decodeTexels(d.target->mapped, d.format, size_t(d.width) * d.height)};
-            output.debugImages.push_back(std::move(image));
-          } else {
-            const auto* words = static_cast<const uint32_t*>(d.target->mapped);
-            times.counters.push_back({d.name, std::vector<uint32_t>(words, words + d.target->size / sizeof(uint32_t))});
-          }
-        }
-        times.readbackMs = msSince(start);
-        auto written = Clock::now();
-        output.gbuffer = &frame.gbuffer;
-        output.historyValid = valid;
-        output.resetReason = reason;
-        if (sink) sink(output);
-        times.writeMs = msSince(written);
-        return times;
-      });
-    }
-    result.frames.push_back(std::move(record));
-    if (options.progress) options.progress(index - begin + 1, end - begin);
+    if (historyWanted_) resources_.swapHistory();
+    history_ = {true, capture_.width, capture_.height, settings_, camera, decoded.medianDistance};
+    return runs;
   }
-  finishPendingSink();
-  result.wallMs = msSince(replayStart);
-  return result;
+
+  bool wantsSink(const FrameGraphRuns& runs) const { return sink_ || !runs.debug.empty(); }
+
+  // Read-back to floats (output and debug views) from the frame's slot, then the caller's sink.
+  SinkTimes sinkFrame(int index, const DecodedFrame& frame, bool valid, const std::string& reason, const FrameGraphRuns& runs) {
+    auto start = Clock::now();
+    SinkTimes times;
+    times.startMs = msBetween(setupStart_, start);
+    const StagingSlot& slot = staging_->forFrame(index);
+    size_t pixels = size_t(capture_.width) * size_t(capture_.height);
+    auto decodedOutput = decodeOutput(slot.readback.mapped, runs.outputFormat, runs.outputLayout, pixels);
+    FrameOutput output;
+    output.index = index;
+    output.width = capture_.width;
+    output.height = capture_.height;
+    output.visibility = std::move(decodedOutput.visibility);
+    output.bent = std::move(decodedOutput.bent);
+    for (const auto& d : runs.debug) {
+      if (!d.target) continue;
+      if (d.format != VK_FORMAT_UNDEFINED) {
+        output.debugImages.push_back({d.name, int(d.width), int(d.height), decodableChannels(d.format),
+                                      decodeTexels(d.target->mapped, d.format, size_t(d.width) * d.height)});
+      } else {
+        const auto* words = static_cast<const uint32_t*>(d.target->mapped);
+        times.counters.push_back({d.name, std::vector<uint32_t>(words, words + d.target->size / sizeof(uint32_t))});
+      }
+    }
+    times.readbackMs = msSince(start);
+    auto written = Clock::now();
+    output.gbuffer = &frame.gbuffer;
+    output.historyValid = valid;
+    output.resetReason = reason;
+    if (sink_) sink_(output);
+    times.writeMs = msSince(written);
+    return times;
+  }
+
+  static void keepSinkTimes(FrameRecord& record, SinkTimes times) {
+    record.sinkStartMs = times.startMs;
+    record.readbackMs = times.readbackMs;
+    record.writeMs = times.writeMs;
+    record.debugCounters = std::move(times.counters);
+  }
+
+  void progress(int index) const {
+    if (options_.progress) options_.progress(index - begin_ + 1, end_ - begin_);
+  }
+
+  // The frames pipelined: frame N+1 decodes on a worker and frame N-1's sink runs on another while
+  // the GPU runs frame N. The most frames per second, but the workers share the CPU (a CPU device's
+  // too) with the frame being timed.
+  void runOverlapped() {
+    auto next = std::async(std::launch::async, [this] { return decode(begin_); });  // overlaps the set-up
+    prepare();
+    auto replayStart = Clock::now();
+    std::future<SinkTimes> pendingSink;
+    size_t pendingRecord = 0;
+    auto finishPendingSink = [&] {
+      if (pendingSink.valid()) keepSinkTimes(result_.frames[pendingRecord], pendingSink.get());
+    };
+    for (int index = begin_; index < end_; ++index) {
+      FrameRecord record;
+      record.hostStartMs = msSince(setupStart_);
+      DecodedFrame decoded = next.get();
+      record.waitMs = msSince(setupStart_) - record.hostStartMs;
+      if (index + 1 < end_) next = std::async(std::launch::async, [this, index] { return decode(index + 1); });
+      auto runs = runFrame(index, decoded, record);
+      finishPendingSink();  // the previous frame's sink: its slot is the next frame's
+      if (wantsSink(runs)) {
+        pendingRecord = result_.frames.size();  // the record pushed below
+        pendingSink = std::async(std::launch::async, [this, index, frame = std::move(decoded), valid = record.historyValid,
+                                                      reason = record.resetReason, runs = std::move(runs)] {
+          return sinkFrame(index, frame, valid, reason, runs);
+        });
+      }
+      result_.frames.push_back(std::move(record));
+      progress(index);
+    }
+    finishPendingSink();
+    result_.wallMs = msSince(replayStart);
+  }
+
+  // No thread of the tool runs while a frame's GPU work is timed: each chunk of frames is decoded and
+  // written into its staging slots first, then its frames run one after the other, then their
+  // read-backs are converted and sunk, in frame order. The `upload` copy stays each frame's timed pass.
+  void runIsolated() {
+    prepare();
+    auto replayStart = Clock::now();
+    for (int chunkBegin = begin_; chunkBegin < end_; chunkBegin += chunkFrames_) {
+      int chunkEnd = std::min(end_, chunkBegin + chunkFrames_);
+      std::vector<DecodedFrame> decoded;
+      for (int index = chunkBegin; index < chunkEnd; ++index) decoded.push_back(decode(index));
+      std::vector<FrameGraphRuns> runs;
+      size_t first = result_.frames.size();
+      for (int index = chunkBegin; index < chunkEnd; ++index) {
+        FrameRecord record;
+        record.hostStartMs = msSince(setupStart_);
+        runs.push_back(runFrame(index, decoded[size_t(index - chunkBegin)], record));
+        result_.frames.push_back(std::move(record));
+      }
+      for (int index = chunkBegin; index < chunkEnd; ++index) {
+        size_t k = size_t(index - chunkBegin);
+        FrameRecord& record = result_.frames[first + k];
+        if (wantsSink(runs[k])) keepSinkTimes(record, sinkFrame(index, decoded[k], record.historyValid, record.resetReason, runs[k]));
+        progress(index);
+      }
+    }
+    result_.wallMs = msSince(replayStart);
+  }
+
+  VulkanContext& vk_;
+  const Capture& capture_;
+  const ReplayOptions& options_;
+  const FrameSink& sink_;
+  int begin_, end_;
+  const Settings& settings_;
+  bool historyWanted_;
+  std::unique_ptr<TechniqueState> state_;
+  CaptureLayout layout_;
+  uint32_t outputTexelBytes_ = 0;
+  graph::ImageDesc outputDesc_;
+  int chunkFrames_ = 0;
+  PipelineCache pipelines_;
+  PhysicalResources resources_;
+  GraphExecutor executor_;
+  std::unique_ptr<StagingBuffers> staging_;
+  HistoryTracker history_;
+  Clock::time_point setupStart_;
+  ReplayResult result_;
+};
+
+}  // namespace
+
+ReplayResult replayCapture(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink) {
+  int total = int(capture.frames.size());
+  int begin = options.frameBegin, end = options.frameEnd < 0 ? total : options.frameEnd;
+  checkRange(capture, begin, end, total);
+  checkTechnique(vk, capture, options);
+  return Replay(vk, capture, options, sink, begin, end).run();
 }
 
 }  // namespace aor

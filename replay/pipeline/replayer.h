@@ -18,6 +18,17 @@
 
 namespace aor {
 
+// How the frames of a replay are ordered against the tool's own work (README, "Timing").
+enum class TimingMode {
+  Auto,        // Isolated on a CPU device (lavapipe, llvmpipe, SwiftShader), Overlapped on a GPU
+  Isolated,    // each chunk of frames decoded before its GPU work and sunk after: nothing of the
+               // tool's runs while a frame is timed
+  Overlapped,  // decode of the next frame and sink of the last on workers, during the GPU work
+};
+TimingMode resolveTimingMode(TimingMode requested, const DeviceInfo& device);
+const char* timingModeName(TimingMode mode);  // "isolated", "overlapped"
+inline constexpr uint64_t kDefaultPreloadBudgetBytes = uint64_t(1024) << 20;
+
 struct ReplayOptions {
   explicit ReplayOptions(Settings s) : settings(std::move(s)) {}
   Settings settings;
@@ -26,6 +37,8 @@ struct ReplayOptions {
   int repeat = 1;          // timed executions per frame
   int warmup = 0;          // untimed executions per frame before the timed ones
   std::set<std::string> debugViews;  // --debug views to read back (names the technique declares)
+  TimingMode timingMode = TimingMode::Auto;
+  uint64_t preloadBudgetBytes = kDefaultPreloadBudgetBytes;  // Isolated: what a chunk of frames may hold
   bool keepHistoryOnCut = false;  // test-only: breaks history invalidation on purpose
   int testPoisonHistoryAt = -1;   // test-only: before this frame (if its history is valid) its "ao_history" is NaN
   CameraJumpLimits cameraJump;    // history is also reset when the camera turns or moves further
@@ -76,6 +89,8 @@ struct CulledPassInfo {
 struct ReplayResult {
   DeviceInfo device;
   Settings settings;
+  TimingMode timingMode = TimingMode::Overlapped;  // the mode the replay ran in (never Auto)
+  int chunkFrames = 0;                             // Isolated: frames preloaded per chunk
   std::vector<FrameRecord> frames;
   std::vector<CulledPassInfo> culled;       // of the last frame's graph
   std::string graphDescription;             // describe() of the last frame's compiled graph

@@ -102,6 +102,9 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   report["settings"] = result.settings.toJson();
   report["run"] = {{"frames", {options.frameBegin, options.frameBegin + int(result.frames.size())}},
                    {"repeat", options.repeat}, {"warmup", options.warmup}};
+  report["timing"] = {{"mode", timingModeName(result.timingMode)},
+                      {"preload_budget_mib", double(options.preloadBudgetBytes) / double(1 << 20)},
+                      {"chunk_frames", result.chunkFrames}};
 
   nlohmann::json passes = nlohmann::json::array();
   std::vector<std::pair<std::string, double>> medians;

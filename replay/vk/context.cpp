@@ -101,6 +101,7 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
                                 VK_API_VERSION_MINOR(props.properties.apiVersion),
                                 VK_API_VERSION_PATCH(props.properties.apiVersion));
   info.isLavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+  info.isCpu = props.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   uint32_t count = 0;
   vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
   std::vector<VkExtensionProperties> extensions(count);

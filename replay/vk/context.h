@@ -20,6 +20,7 @@ struct DeviceInfo {
   std::string driver;
   std::string apiVersion;
   bool isLavapipe = false;
+  bool isCpu = false;  // a CPU implementation (lavapipe, llvmpipe, SwiftShader): it computes on the host's cores
   std::vector<std::string> extensions;  // every device extension the driver offers
   bool hasExtension(const std::string& name) const;
 };
