@@ -36,9 +36,11 @@
 #include "capture/input_error.h"
 #include "options/number.h"
 #include "options/size.h"
-#include "passes/pass_names.h"
 #include "pipeline/replayer.h"
 #include "report/compare_stats.h"
+#include "report/pipeline_time.h"
+#include "report/run_outputs.h"
+#include "report/stats.h"
 #include "vk/context.h"
 
 namespace aor::bench {
@@ -69,7 +71,7 @@ struct Config {
 
 struct Measured {
   std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution
-  std::vector<double> pipelineMs;                      // sum of the compute passes, per execution
+  std::vector<double> pipelineMs;                      // repetitionSumsMs: the compute passes, per execution
 };
 
 class Harness {
@@ -104,12 +106,10 @@ class Harness {
     auto result = replayCapture(context_.vk, capture, replay, nullptr);
     Measured m;
     const auto& frame = result.frames.back();
-    m.pipelineMs.assign(size_t(options_.reps), 0.0);
-    for (const auto& pass : frame.passes) {
-      m.passMs[pass.name] = pass.durationsMs;
-      if (!isHostCopyPass(pass.name))
-        for (size_t i = 0; i < pass.durationsMs.size(); ++i) m.pipelineMs[i] += pass.durationsMs[i];
-    }
+    for (const auto& pass : frame.passes) m.passMs[pass.name] = pass.durationsMs;
+    // The run total's definition (report/pipeline_time.h): Google Benchmark's median of these
+    // samples is the frame's totalMedianMs.
+    m.pipelineMs = repetitionSumsMs({timedFrame(frame)}, PassGroup::Compute);
     return measured_.emplace(config.key(), std::move(m)).first->second;
   }
 
@@ -193,7 +193,7 @@ ScalingInput scalingInput() {
   // Only what the benchmark filter let run.
   for (auto [w, h] : o.sizes)
     if (const auto* m = harness->alreadyMeasured(makeConfig(w, h, "high", 1)))
-      in.byPixels.push_back({double(w) * h, medianOf(m->pipelineMs)});
+      in.byPixels.push_back({double(w) * h, summarize(m->pipelineMs).median});
   for (const auto& c : scalingConfigs())
     if (const auto* m = harness->alreadyMeasured(c))
       in.bySliceSteps.push_back({double(c.settings.slices * c.settings.steps), medianOf(m->passMs.at("gtao"))});
