@@ -12,6 +12,7 @@
 
 #include "capture/image_io.h"
 #include "gpu_test_support.h"
+#include "report/compare.h"
 
 namespace aor::test {
 namespace {
@@ -75,6 +76,12 @@ TEST_F(Cli, RunWritesImagesReportAndTraceWithPerPassTimes) {
   EXPECT_NEAR(report["gpu_ms_total_median"].get<double>(), computeMs, 1e-9 * computeMs);
   EXPECT_NEAR(report["gpu_ms_host_copies_median"].get<double>(), hostCopyMs, 1e-9 * hostCopyMs);
   EXPECT_NE(r.output.find(fmt::format("host copies add {:.3f}", hostCopyMs)), std::string::npos) << r.output;
+  // compare reads the same total back from the report: its one value for this run.
+  auto timings = loadTimingSamples(out / "report.json");
+  auto total = std::find_if(timings.begin(), timings.end(), [](const auto& s) { return s.name == "total"; });
+  ASSERT_NE(total, timings.end());
+  EXPECT_EQ(total->runValue(), report["gpu_ms_total_median"].get<double>());
+  EXPECT_EQ(total->samples.size(), 9u);
   EXPECT_EQ(report["frames"][0]["history"], "reset");
   EXPECT_EQ(report["frames"][0]["reset_reason"], "first frame");
   EXPECT_EQ(report["frames"][1]["history"], "valid");
