@@ -269,9 +269,9 @@ PassComparison measureName(const NameValues& base, const NameValues& other, cons
   p.logRatio = std::log(p.newMedian) - std::log(p.baselineMedian);  // exactly antisymmetric in the sides
   p.baselineSpread = robustSpread(logsOf(base.values));
   p.newSpread = robustSpread(logsOf(other.values));
+  p.effectFloor = std::max(std::log1p(options.minEffect), std::log1p(options.minEffectMs / p.baselineMedian));
   // Either side may be the disturbed one (compare_README.md, rule 4), so the noisier sets the bar.
-  p.threshold = std::max({std::log1p(options.minEffect), options.spreadMultiple * std::max(p.baselineSpread, p.newSpread),
-                          std::log1p(options.minEffectMs / p.baselineMedian)});
+  p.threshold = std::max(p.effectFloor, options.spreadMultiple * std::max(p.baselineSpread, p.newSpread));
   auto test = mannWhitneyU(base.values, other.values);
   p.pValue = test.pValue;
   p.exact = test.exact;
@@ -290,14 +290,19 @@ void adjustPValues(std::vector<PassComparison>& passes, size_t judgedNames) {
     p.pHolm = p.judged ? adjusted[next++] : std::min(1.0, p.pValue * double(std::max<size_t>(judgedNames, 1)));
 }
 
-void decideVerdict(PassComparison& p, const CompareOptions& options, double strictestLevel, size_t fewest) {
+// A significant change counts from the minimum effect when the values are runs: the test then sees
+// the run-to-run variation itself. Within-run samples cannot, so there a change must also beat the
+// noisier side's spread (compare_README.md, rule 4). Either way, a change the test cannot confirm
+// is `unknown` only beyond the spread threshold: below it, it is within what the noise explains.
+void decideVerdict(PassComparison& p, Level level, const CompareOptions& options, double strictestLevel, size_t fewest) {
   size_t fewer = std::min(p.baselineCount, p.newCount);
   bool large = std::abs(p.logRatio) >= p.threshold;
+  bool counts = std::abs(p.logRatio) >= (level == Level::Runs ? p.effectFloor : p.threshold);
   if (smallestTwoSidedP(p.baselineCount, p.newCount) > strictestLevel) {
     // No outcome of this many values could be significant: neither a change nor its absence is known.
     p.verdict = Verdict::Unknown;
     p.moreNeeded = std::max(fewest, fewer + 1) - fewer;
-  } else if (p.pHolm <= options.alpha && large) {
+  } else if (p.pHolm <= options.alpha && counts) {
     p.verdict = p.logRatio > 0 ? Verdict::Slower : Verdict::Faster;
   } else if (large) {
     // A big median change the test cannot confirm yet: more values will tell, so say how many.
@@ -330,7 +335,7 @@ Comparison compareTimings(const SideTimings& baseline, const SideTimings& candid
   // The first name Holm tests faces alpha / names: what a verdict needs at the least.
   double strictest = options.alpha / double(std::max<size_t>(c.judgedNames, 1));
   c.fewestPerSide = fewestPerSide(strictest);
-  for (auto& p : c.passes) decideVerdict(p, options, strictest, c.fewestPerSide);
+  for (auto& p : c.passes) decideVerdict(p, c.level, options, strictest, c.fewestPerSide);
   return c;
 }
 
@@ -406,6 +411,7 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
                       {"more_needed_per_side", p.moreNeeded ? nlohmann::json(*p.moreNeeded) : nlohmann::json()},
                       {"baseline_median_ms", p.baselineMedian}, {"new_median_ms", p.newMedian}, {"ratio", p.ratio()},
                       {"log_ratio", p.logRatio}, {"threshold_log_ratio", p.threshold},
+                      {"min_effect_log_ratio", p.effectFloor},
                       {"baseline_log_spread", p.baselineSpread}, {"new_log_spread", p.newSpread},
                       {"p_value", p.pValue}, {"p_exact", p.exact}, {"p_holm", p.pHolm},
                       {"baseline_larger_share", p.baselineLargerShare},

@@ -68,7 +68,9 @@ struct PassComparison {
   size_t baselineCount = 0, newCount = 0;  // values tested: runs, or samples
   double baselineMedian = 0, newMedian = 0;
   double logRatio = 0;        // ln(new median / baseline median): x2 and x0.5 are equally far
-  double threshold = 0;       // smallest |logRatio| that counts for this name (all floors)
+  double effectFloor = 0;     // smallest |logRatio| that matters: --min-effect and --min-effect-ms
+  double threshold = 0;       // the floor or spread-multiple x the noisier side's spread, the larger: a
+                              // change below it is `same` unless a run-level test confirms it
   double baselineSpread = 0;  // robust spread of the baseline's log values
   double newSpread = 0;       // same, of the new side: a disturbed run spreads, and its median moves
   double pValue = 1;          // Mann-Whitney U, two-sided
