@@ -49,7 +49,8 @@ void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
                  "smallest absolute median change that counts, in milliseconds (default 0.001)")
       ->check(CLI::Range(0.0, 1e6));
   cmd.add_option("--spread-multiple", flags.options.spreadMultiple,
-                 "the change must also exceed this many spreads (robust, of log values) of the noisier side")
+                 "spreads (robust, of log values) of the noisier side a change must exceed: to count at all with "
+                 "within-run samples, to be unknown rather than same with runs (default 2)")
       ->check(CLI::Range(0.0, 100.0));
   cmd.add_flag("--judge-host-copies", flags.options.judgeHostCopies,
                "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");
