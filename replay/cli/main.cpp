@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   aor::cli::registerCompareCommand(app);
   aor::cli::registerSweepCommand(app, help);
   aor::cli::registerTechniquesCommand(app);
+  aor::cli::registerAbCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);
