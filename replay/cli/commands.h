@@ -15,6 +15,7 @@ void registerGraphCommand(CLI::App& app);
 void registerDevicesCommand(CLI::App& app);
 void registerCompareCommand(CLI::App& app);
 void registerSweepCommand(CLI::App& app);
+void registerImportCommand(CLI::App& app);
 int runSelected(CLI::App& app);
 
 }  // namespace aor::cli

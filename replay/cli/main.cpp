@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   aor::cli::registerDevicesCommand(app);
   aor::cli::registerCompareCommand(app);
   aor::cli::registerSweepCommand(app);
+  aor::cli::registerImportCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);
