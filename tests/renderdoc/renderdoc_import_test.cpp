@@ -90,6 +90,9 @@ fs::path renderScene(const std::string& name, const std::string& format, bool re
 }
 
 const char* kCamera = "--view camera.view --projection camera.projection";
+// rd_scene's event IDs as RenderDoc 1.24 numbers them: the G-buffer pass draws the floor, then
+// the three boxes; the overlay pass draws without a depth attachment.
+constexpr int kFloorDraw = 14, kLastGBufferDraw = 17, kOverlayDraw = 26;
 
 struct DepthCase {
   const char* format;
@@ -97,6 +100,8 @@ struct DepthCase {
   bool reversed;
   double quantum;  // one step of the format at depth 1
 };
+
+void PrintTo(const DepthCase& c, std::ostream* os) { *os << c.format << (c.reversed ? " reversed" : " standard"); }
 
 class ImportMatchesReadBack : public ::testing::TestWithParam<DepthCase> {};
 
@@ -108,8 +113,9 @@ TEST_P(ImportMatchesReadBack, DepthNormalsAndMatricesBitForBitAndDepthAnalytic) 
   const Command r = aoreplay(fmt::format("import renderdoc {} --out {} --normals gbuffer.normals {}",
                                          (dir / "captures" / "0000.rdc").string(), out.string(), kCamera));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("event 15 vkCmdDraw() in gbuffer: last draw with a depth target"), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find(fmt::format("event {} vkCmdDraw() in gbuffer: last draw with a depth target",
+                                      kLastGBufferDraw)),
+            std::string::npos) << r.output;
   EXPECT_NE(r.output.find("depth: gbuffer.depth (id"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(fmt::format("{} 160x90", c.renderdocName)), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(c.reversed ? "reversed depth, near 0.1, far 40" : "standard depth, near 0.1, far 40"),
@@ -120,7 +126,7 @@ TEST_P(ImportMatchesReadBack, DepthNormalsAndMatricesBitForBitAndDepthAnalytic) 
   ASSERT_EQ(capture.width, 160);
   ASSERT_EQ(capture.height, 90);
   const nlohmann::json& scene = capture.scene.at("frames").at(0);
-  EXPECT_EQ(scene.at("event"), 15);
+  EXPECT_EQ(scene.at("event"), kLastGBufferDraw);
   EXPECT_EQ(scene.at("depth").at("format"), c.renderdocName);
   EXPECT_EQ(scene.at("normals").at("resource"), "gbuffer.normals");
   EXPECT_EQ(scene.at("projection"), "camera.projection (vertex shader, row-major)");
@@ -242,12 +248,13 @@ TEST(RenderDocImport, PassAndEventChooseTheDraw) {
   const Command pass = aoreplay(fmt::format("import renderdoc {} --pass gbuffer --out {} {}", rdc,
                                             (dir / "pass").string(), kCamera));
   ASSERT_EQ(pass.exitCode, 0) << pass.output;
-  EXPECT_NE(pass.output.find("event 15 vkCmdDraw() in gbuffer: last draw with a depth target in pass gbuffer"),
+  EXPECT_NE(pass.output.find(fmt::format("event {} vkCmdDraw() in gbuffer: last draw with a depth target in pass "
+                                         "gbuffer", kLastGBufferDraw)),
             std::string::npos) << pass.output;
-  const Command event = aoreplay(fmt::format("import renderdoc {} --event 12 --out {} {}", rdc,
+  const Command event = aoreplay(fmt::format("import renderdoc {} --event {} --out {} {}", rdc, kFloorDraw,
                                              (dir / "event").string(), kCamera));
   ASSERT_EQ(event.exitCode, 0) << event.output;
-  // Event 12 draws the floor alone; the boxes drawn after it only bring depth nearer.
+  // The floor alone; the boxes drawn after it only bring depth nearer.
   const GBuffer floorOnly = loadGBuffer(loadCapture(dir / "event"), 0);
   const GBuffer all = loadGBuffer(loadCapture(dir / "pass"), 0);
   size_t nearer = 0, farther = 0;
@@ -312,14 +319,15 @@ TEST_F(BadInput, MissingMemberListsTheMembers) {
 TEST_F(BadInput, MissingBlockListsTheBlocks) {
   const fs::path dir = scratch("missing-block");
   expectRefused(dir, fmt::format("{} --view Camera.view --projection camera.projection", rdc().string()),
-                {"field \"--view\": no uniform block Camera in the shaders at event 15",
+                {fmt::format("field \"--view\": no uniform block Camera in the shaders at event {}", kLastGBufferDraw),
                  "the blocks there: camera [vertex shader: view (float4x4)"});
 }
 
 TEST_F(BadInput, NoDepthTargetAtTheEvent) {
   const fs::path dir = scratch("no-depth");
-  expectRefused(dir, fmt::format("{} --event 23 {}", rdc().string(), kCamera),
-                {"field \"--event\": no depth target at event 23 (vkCmdDraw())", "with a depth target: 12 (vkCmdDraw())"});
+  expectRefused(dir, fmt::format("{} --event {} {}", rdc().string(), kOverlayDraw, kCamera),
+                {fmt::format("field \"--event\": no depth target at event {} (vkCmdDraw())", kOverlayDraw),
+                 fmt::format("with a depth target: {} (vkCmdDraw())", kFloorDraw)});
 }
 
 TEST_F(BadInput, CaptureFromANewerRenderDoc) {
@@ -355,6 +363,16 @@ TEST_F(BadInput, ProjectionThatIsNotPerspective) {
   const fs::path dir = scratch("not-perspective");
   expectRefused(dir, fmt::format("{} --view camera.projection --projection camera.view", rdc().string()),
                 {"field \"--projection\": camera.view is not a perspective projection: its last row is (0, 0, 0, 1)"});
+}
+
+TEST_F(BadInput, MatricesInPushConstantsOrStorageBuffersAreNotSupportedYet) {
+  const fs::path dir = scratch("push-constants");
+  expectRefused(dir, fmt::format("{} --view object.model --projection camera.projection", rdc().string()),
+                {"field \"--view\": object is a push-constant block of the vertex shader: matrices in push constants "
+                 "are not supported yet"});
+  expectRefused(dir, fmt::format("{} --view camera.view --projection extra.shadow", rdc().string()),
+                {"field \"--projection\": extra is a storage buffer of the vertex shader: matrices in storage buffers "
+                 "are not supported yet"});
 }
 
 TEST_F(BadInput, SameMemberForBothMatrices) {

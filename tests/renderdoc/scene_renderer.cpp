@@ -62,7 +62,7 @@ struct SceneRenderer::State {
   Image depth, normals, overlay;
   VkRenderPass gbufferPass = VK_NULL_HANDLE, overlayPass = VK_NULL_HANDLE;
   VkFramebuffer gbufferFramebuffer = VK_NULL_HANDLE, overlayFramebuffer = VK_NULL_HANDLE;
-  Buffer uniforms, vertices, depthReadback, normalReadback;
+  Buffer uniforms, extra, vertices, depthReadback, normalReadback;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
@@ -287,32 +287,40 @@ VkFramebuffer SceneRenderer::State::createFramebuffer(VkRenderPass pass, std::ve
 }
 
 void SceneRenderer::State::createDescriptors() {
-  VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+  const VkDescriptorSetLayoutBinding bindings[2] = {
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
   VkDescriptorSetLayoutCreateInfo layout{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layout.bindingCount = 1;
-  layout.pBindings = &binding;
+  layout.bindingCount = 2;
+  layout.pBindings = bindings;
   check(vkCreateDescriptorSetLayout(device, &layout, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+  const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
+  poolInfo.poolSizeCount = 2;
+  poolInfo.pPoolSizes = sizes;
   check(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   alloc.descriptorPool = pool;
   alloc.descriptorSetCount = 1;
   alloc.pSetLayouts = &setLayout;
   check(vkAllocateDescriptorSets(device, &alloc, &set), "vkAllocateDescriptorSets");
-  VkDescriptorBufferInfo bufferInfo{uniforms.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  write.pBufferInfo = &bufferInfo;
-  vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+  const VkDescriptorBufferInfo bufferInfos[2] = {{uniforms.buffer, 0, VK_WHOLE_SIZE}, {extra.buffer, 0, VK_WHOLE_SIZE}};
+  VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+  for (uint32_t i = 0; i < 2; ++i) {
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &bufferInfos[i];
+  }
+  vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+  const VkPushConstantRange model{VK_SHADER_STAGE_VERTEX_BIT, 0, 64};
   VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pl.setLayoutCount = 1;
   pl.pSetLayouts = &setLayout;
+  pl.pushConstantRangeCount = 1;
+  pl.pPushConstantRanges = &model;
   check(vkCreatePipelineLayout(device, &pl, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
 }
 
@@ -429,6 +437,8 @@ void SceneRenderer::State::record(const Camera& camera) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &offset);
+  const glm::mat4 identity(1.0f);
+  vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, 64, glm::value_ptr(identity));
   for (size_t i = 0; i + 1 < mesh.firstVertex.size(); ++i)
     vkCmdDraw(cmd, mesh.firstVertex[i + 1] - mesh.firstVertex[i], 1, mesh.firstVertex[i], 0);
   vkCmdEndRenderPass(cmd);
@@ -442,6 +452,7 @@ void SceneRenderer::State::record(const Camera& camera) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, overlayPipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &offset);
+  vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, 64, glm::value_ptr(identity));
   vkCmdDraw(cmd, mesh.firstVertex[1], 1, 0, 0);
   vkCmdEndRenderPass(cmd);
   label(nullptr, false);
@@ -470,7 +481,7 @@ void SceneRenderer::State::destroy() {
   vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
   vkDestroyDescriptorPool(device, pool, nullptr);
   vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
-  for (Buffer* b : {&uniforms, &vertices, &depthReadback, &normalReadback}) {
+  for (Buffer* b : {&uniforms, &extra, &vertices, &depthReadback, &normalReadback}) {
     vkDestroyBuffer(device, b->buffer, nullptr);
     vkFreeMemory(device, b->memory, nullptr);
   }
@@ -508,6 +519,9 @@ SceneRenderer::SceneRenderer(const RenderOptions& options) : s_(std::make_unique
   s.overlayFramebuffer = s.createFramebuffer(s.overlayPass, {s.overlay.view});
   const size_t pixels = size_t(options.width) * size_t(options.height);
   s.uniforms = s.createBuffer(144, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  s.extra = s.createBuffer(64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const glm::mat4 identity(1.0f);
+  std::memcpy(s.extra.mapped, glm::value_ptr(identity), 64);
   s.vertices = s.createBuffer(s.mesh.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   std::memcpy(s.vertices.mapped, s.mesh.vertices.data(), s.mesh.vertices.size() * sizeof(Vertex));
   s.depthReadback = s.createBuffer(pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
