@@ -188,7 +188,8 @@ TEST_P(ImportMatchesReadBack, DepthNormalsAndMatricesBitForBitAndDepthAnalytic) 
   EXPECT_GT(compared, 7000u) << "most of the image is floor and boxes";
   EXPECT_GT(sky, 300u) << "and some is sky";
   EXPECT_EQ(skyMismatches, 0u) << "sky is the cleared far value exactly";
-  EXPECT_LT(maxError, 2.0 * c.quantum + 2e-6) << "max |depth - analytic|";
+  // Two steps of the format, plus four float32 steps at 1: the rasteriser interpolates z/w in float.
+  EXPECT_LT(maxError, 2.0 * c.quantum + 4.0 * 5.96e-8) << "max |depth - analytic|";
   std::printf("[ %s ] %zu pixels, max |depth - analytic| = %.3g (format step %.3g)\n", name.c_str(), compared,
               maxError, c.quantum);
 }
