@@ -88,8 +88,7 @@ def open_replay(rd, path, made_with):
     result = cap.OpenFile(path, "", None)
     installed = rd.GetVersionString()
     incompatible = (rd.ResultCode.FileIncompatibleVersion, rd.ResultCode.APIIncompatibleVersion)
-    if result.code in incompatible or (result.code == rd.ResultCode.Succeeded and cap.LocalReplaySupport() ==
-                                        rd.ReplaySupport.SuggestRemote):
+    if result.code in incompatible:
         if version_tuple(made_with) > version_tuple(installed):
             raise ImportFailure("", "made with RenderDoc %s, newer than the installed RenderDoc %s, which cannot open "
                                 "it: give --renderdoc-python DIR of a RenderDoc %s (or newer) build (%s)"
@@ -140,7 +139,7 @@ class Frame:
     def find_texture(self, text, field):
         """A texture by RenderDoc's name for it, by 'ResourceId::N' or by N."""
         wanted = text.strip()
-        for rid, tex in self.textures.items():
+        for rid in self.textures:
             if self.name_of(rid) == wanted or str(rid) == wanted or str(rid) == "ResourceId::" + wanted:
                 return rid
         listed = ", ".join("%s (%s, %s)" % (self.name_of(r), str(r).replace("ResourceId::", "id "), t.format.Name())
@@ -201,7 +200,7 @@ def texture_dump(frame, rid, mip, layer, path, field):
     }
 
 
-def dump_depth(frame, args, out_dir):
+def dump_depth(frame, out_dir):
     bound = frame.controller.GetPipelineState().GetDepthTarget()
     if bound.resourceId == frame.rd.ResourceId.Null():
         raise ImportFailure("--event", "no depth target at event %s; the capture's draws with a depth target: %s"
@@ -329,7 +328,7 @@ def dump(args, result):
                            "why": why}
         result["viewport"] = viewport_of(controller.GetPipelineState())
         result["blocks"] = block_listing(frame)
-        result["depth"] = dump_depth(frame, args, args.out)
+        result["depth"] = dump_depth(frame, args.out)
         if depth_id is not None and result["depth"]["id"] != id_number(depth_id):
             raise ImportFailure("--depth", "at event %s the depth target is %s, not %s"
                                 % (frame.current, result["depth"]["resource"], args.depth))
