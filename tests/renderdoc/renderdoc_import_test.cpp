@@ -59,6 +59,11 @@ std::vector<T> readBinary(const fs::path& path) {
   return values;
 }
 
+std::string readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
 nlohmann::json readJson(const fs::path& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);
@@ -212,6 +217,11 @@ TEST(RenderDocImport, ImportedFrameReplaysValidated) {
                                          capture.string(), kCamera));
   ASSERT_EQ(i.exitCode, 0) << i.output;
   EXPECT_NE(i.output.find("normals: none (reconstructed from depth on replay)"), std::string::npos) << i.output;
+  const Command again = aoreplay(fmt::format("import renderdoc {} --out {} {}",
+                                             (dir / "captures" / "0000.rdc").string(), (dir / "again").string(), kCamera));
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  for (const char* file : {"capture.json", "frames/0000.exr"})
+    EXPECT_EQ(readBytes(capture / file), readBytes(dir / "again" / file)) << file << ": the same .rdc, the same bytes";
   const Command r = aoreplay(fmt::format("run {} --validate --out {}", capture.string(), (dir / "run").string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const nlohmann::json report = readJson(dir / "run" / "report.json");
@@ -294,10 +304,7 @@ fs::path BadInput::sceneDir_;
 
 TEST_F(BadInput, TruncatedCapture) {
   const fs::path dir = scratch("truncated");
-  const std::string whole = [] {
-    std::ifstream in(rdc(), std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
-  }();
+  const std::string whole = readBytes(rdc());
   std::ofstream(dir / "half.rdc", std::ios::binary) << whole.substr(0, whole.size() / 2);
   expectRefused(dir, fmt::format("{} {}", (dir / "half.rdc").string(), kCamera),
                 {"half.rdc: frame 0: RenderDoc 1.24 cannot open it: File is corrupted"});
@@ -333,10 +340,7 @@ TEST_F(BadInput, NoDepthTargetAtTheEvent) {
 
 TEST_F(BadInput, CaptureFromANewerRenderDoc) {
   const fs::path dir = scratch("newer");
-  std::string bytes = [] {
-    std::ifstream in(rdc(), std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
-  }();
+  std::string bytes = readBytes(rdc());
   // A later RenderDoc's header: a newer file format version and its version string.
   bytes[9] = char(bytes[9] + 1);
   const char later[16] = "1.99";
