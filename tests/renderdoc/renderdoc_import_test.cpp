@@ -305,9 +305,12 @@ fs::path BadInput::sceneDir_;
 TEST_F(BadInput, TruncatedCapture) {
   const fs::path dir = scratch("truncated");
   const std::string whole = readBytes(rdc());
-  std::ofstream(dir / "half.rdc", std::ios::binary) << whole.substr(0, whole.size() / 2);
-  expectRefused(dir, fmt::format("{} {}", (dir / "half.rdc").string(), kCamera),
-                {"half.rdc: frame 0: RenderDoc 1.24 cannot open it: File is corrupted"});
+  for (int percent : {1, 10, 40, 50, 60, 90, 99}) {  // the header, the thumbnail, the frame's chunks
+    std::ofstream(dir / "cut.rdc", std::ios::binary) << whole.substr(0, whole.size() * size_t(percent) / 100);
+    SCOPED_TRACE(fmt::format("{}% of the file", percent));
+    expectRefused(dir, fmt::format("{} {}", (dir / "cut.rdc").string(), kCamera),
+                  {"cut.rdc: frame 0: RenderDoc 1.24 cannot open it: File is corrupted"});
+  }
 }
 
 TEST_F(BadInput, NotARenderDocFile) {
