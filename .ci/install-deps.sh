@@ -10,6 +10,8 @@ packages=(
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz
+  python3 python3-renderdoc librenderdoc librenderdoc-dev  # aoreplay import renderdoc; rd_scene (tests/renderdoc/)
+  xvfb xauth  # vkcube under xvfb-run, captured through RenderDoc target control (tests/renderdoc/)
   clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/
 )
 missing=()

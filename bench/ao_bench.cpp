@@ -42,11 +42,13 @@
 #include "capture/input_error.h"
 #include "options/number.h"
 #include "options/size.h"
-#include "blocks/pass_names.h"
 #include "pipeline/replayer.h"
 #include "techniques/frame_graph.h"
 #include "techniques/registry.h"
 #include "report/compare_stats.h"
+#include "report/pipeline_time.h"
+#include "report/run_outputs.h"
+#include "report/stats.h"
 #include "vk/context.h"
 
 namespace aor::bench {
@@ -86,7 +88,7 @@ struct Config {
 
 struct Measured {
   std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution
-  std::vector<double> pipelineMs;                      // sum of the compute passes, per execution
+  std::vector<double> pipelineMs;                      // repetitionSumsMs: the compute passes, per execution
 };
 
 class Harness {
@@ -148,12 +150,10 @@ class Harness {
     auto result = replayCapture(context_.vk, capture, replay, nullptr);
     Measured m;
     const auto& frame = result.frames.back();
-    m.pipelineMs.assign(size_t(options_.reps), 0.0);
-    for (const auto& pass : frame.passes) {
-      m.passMs[pass.name] = pass.durationsMs;
-      if (!isHostCopyPass(pass.name))
-        for (size_t i = 0; i < pass.durationsMs.size(); ++i) m.pipelineMs[i] += pass.durationsMs[i];
-    }
+    for (const auto& pass : frame.passes) m.passMs[pass.name] = pass.durationsMs;
+    // The run total's definition (report/pipeline_time.h): Google Benchmark's median of these
+    // samples is the frame's totalMedianMs.
+    m.pipelineMs = repetitionSumsMs({timedFrame(frame)}, PassGroup::Compute);
     return measured_.emplace(config.key(), std::move(m)).first->second;
   }
 
@@ -245,12 +245,12 @@ ScalingInput scalingInput() {
   // Only what the benchmark filter let run.
   for (auto [w, h] : o.sizes)
     if (const auto* m = harness->alreadyMeasured({&first, first.defaultPreset, {}, w, h}))
-      in.byPixels.push_back({double(w) * h, medianOf(m->pipelineMs)});
+      in.byPixels.push_back({double(w) * h, summarize(m->pipelineMs).median});
   auto configs = scalingConfigs();  // in the order of kScalingSliceSteps
   for (size_t i = 0; i < configs.size(); ++i)
     if (const auto* m = harness->alreadyMeasured(configs[i])) {
       auto [slices, steps] = kScalingSliceSteps[i];
-      in.bySliceSteps.push_back({double(slices * steps), medianOf(m->pipelineMs)});
+      in.bySliceSteps.push_back({double(slices * steps), summarize(m->pipelineMs).median});
     }
   auto [w, h] = scalingSize();
   in.sliceStepsSize = fmt::format("{}x{}", w, h);

@@ -56,7 +56,7 @@ for i in $(seq 1 "$pairs"); do
   python3 -c "import json,sys; d=json.load(open(sys.argv[1])); sys.exit(any(p['verdict']!='same' for p in d['passes'] if p.get('judged', True)))" \
     "$out/same$i.json" && all_same=$((all_same + 1))
   total_same=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(next(p['verdict'] for p in d['passes'] if p['name']=='total'))" "$out/same$i.json")
-  total_slow=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); p=next(p for p in d['passes'] if p['name']=='total'); print(p['verdict'], '%+.1f%%' % (100*p['change']))" "$out/slow$i.json")
+  total_slow=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); p=next(p for p in d['passes'] if p['name']=='total'); print(p['verdict'], 'x%.3f' % p['ratio'])" "$out/slow$i.json")
   echo "pair $i: A vs B exit $same_rc (total: $total_same); A vs slices=$s_slices exit $slow_rc (total: $total_slow)"
 done
 echo "same build, separate runs: every pass 'same' in $all_same/$pairs; exit 1 (slowdown claimed) in $false_alarms/$pairs"

@@ -1,27 +1,23 @@
-// `aoreplay compare BASELINE NEW`: per pass verdicts from two report.json or Google Benchmark JSON
-// files; exit 1 only when something got significantly slower.
+// `aoreplay compare BASELINE NEW`: per pass verdicts from two sides, each a report.json, a Google
+// Benchmark JSON file or a folder of report.json files (one per run); exit 1 only when something
+// got significantly slower (or, with --fail-on-unknown, could not be judged).
+#include "cli/compare_command.h"
+
 #include <memory>
 #include <regex>
 
 #include <fmt/format.h>
 
-#include "cli/commands.h"
 #include "capture/input_error.h"
+#include "cli/commands.h"
 #include "cli/handlers.h"
-#include "report/compare.h"
 #include "report/output_directory.h"
 
 namespace aor::cli {
 namespace {
 
-struct CompareArgs {
-  std::string baseline, candidate, json;
-  std::vector<std::string> ignore;
-  CompareOptions options;
-};
-
 // Drops names matching any --ignore pattern (e.g. host-link copies that are not the algorithm).
-TimingSamples withoutIgnored(TimingSamples samples, const std::vector<std::string>& patterns) {
+SideTimings withoutIgnored(SideTimings side, const std::vector<std::string>& patterns) {
   for (const auto& pattern : patterns) {
     std::regex re;
     try {
@@ -29,43 +25,64 @@ TimingSamples withoutIgnored(TimingSamples samples, const std::vector<std::strin
     } catch (const std::regex_error& e) {
       throw InputError("", std::nullopt, "--ignore", fmt::format("\"{}\" is not a regular expression: {}", pattern, e.what()));
     }
-    std::erase_if(samples, [&](const auto& series) { return std::regex_search(series.name, re); });
+    for (auto& run : side.runs)
+      std::erase_if(run.series, [&](const auto& series) { return std::regex_search(series.name, re); });
   }
-  return samples;
+  return side;
 }
 
-int compareCommand(const CompareArgs& args) {
-  auto comparison = compareTimings(withoutIgnored(loadTimingSamples(args.baseline), args.ignore),
-                                   withoutIgnored(loadTimingSamples(args.candidate), args.ignore), args.options);
-  if (comparison.passes.empty())
-    throw InputError(args.candidate, std::nullopt, "", fmt::format("no pass or benchmark name in common with {}", args.baseline));
-  fmt::print("{}", comparisonTable(comparison));
-  if (!args.json.empty()) writeFileAtomically(args.json, comparisonJson(comparison, args.options).dump(2) + "\n");
-  return comparison.significantSlowdown() ? kExitFailed : kExitOk;
-}
+struct CompareArgs {
+  std::string baseline, candidate;
+  CompareFlags flags;
+};
 
 }  // namespace
 
+void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
+  cmd.add_option("--json", flags.json, "also write the verdicts as JSON to this file");
+  cmd.add_option("--ignore", flags.ignore, "skip names matching this regular expression (repeatable)");
+  cmd.add_option("--alpha", flags.options.alpha, "false-alarm rate over all judged names (Holm), default 0.05")
+      ->check(CLI::Range(1e-9, 0.5));
+  cmd.add_option("--min-effect", flags.options.minEffect, "smallest median change that counts, as a ratio either way (default 0.02)")
+      ->check(CLI::Range(0.0, 10.0));
+  cmd.add_option("--min-effect-ms", flags.options.minEffectMs,
+                 "smallest absolute median change that counts, in milliseconds (default 0.001)")
+      ->check(CLI::Range(0.0, 1e6));
+  cmd.add_option("--spread-multiple", flags.options.spreadMultiple,
+                 "spreads (robust, of log values) of the noisier side a change must exceed: to count at all with "
+                 "within-run samples, to be unknown rather than same with runs (default 2)")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd.add_flag("--judge-host-copies", flags.options.judgeHostCopies,
+               "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");
+  cmd.add_flag("--fail-on-unknown", flags.options.failOnUnknown,
+               "exit 1 also when a judged name is unknown (not enough runs to tell)");
+}
+
+Comparison judgeSides(SideTimings baseline, SideTimings candidate, const CompareFlags& flags) {
+  std::string baselineSource = baseline.source, newSource = candidate.source;
+  auto comparison = compareTimings(withoutIgnored(std::move(baseline), flags.ignore),
+                                   withoutIgnored(std::move(candidate), flags.ignore), flags.options);
+  if (comparison.passes.empty())
+    throw InputError(newSource, std::nullopt, "", fmt::format("no pass or benchmark name in common with {}", baselineSource));
+  return comparison;
+}
+
+int reportComparison(const Comparison& comparison, const CompareFlags& flags) {
+  fmt::print("{}", comparisonTable(comparison));
+  if (!flags.json.empty()) writeFileAtomically(flags.json, comparisonJson(comparison, flags.options).dump(2) + "\n");
+  return comparison.fails(flags.options) ? kExitFailed : kExitOk;
+}
+
 void registerCompareCommand(CLI::App& app) {
   auto args = std::make_shared<CompareArgs>();
-  auto* cmd = app.add_subcommand("compare", "compare GPU times of two runs (report.json or Google Benchmark JSON)");
-  cmd->add_option("baseline", args->baseline, "baseline report.json or benchmark JSON")->required();
-  cmd->add_option("new", args->candidate, "new report.json or benchmark JSON")->required();
-  cmd->add_option("--json", args->json, "also write the verdicts as JSON to this file");
-  cmd->add_option("--ignore", args->ignore, "skip names matching this regular expression (repeatable)");
-  cmd->add_option("--alpha", args->options.alpha, "false-alarm rate over all names (Bonferroni split)")
-      ->check(CLI::Range(1e-9, 0.5));
-  cmd->add_option("--min-effect", args->options.minEffect, "smallest relative median change that counts")
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--min-effect-ms", args->options.minEffectMs,
-                  "smallest absolute median change that counts, in milliseconds (default 0.001)")
-      ->check(CLI::Range(0.0, 1e6));
-  cmd->add_option("--spread-multiple", args->options.spreadMultiple,
-                  "the change must also exceed this many spreads (robust, relative) of the noisier run")
-      ->check(CLI::Range(0.0, 100.0));
-  cmd->add_flag("--judge-host-copies", args->options.judgeHostCopies,
-                "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");
-  handlers()["compare"] = [args] { return compareCommand(*args); };
+  auto* cmd = app.add_subcommand(
+      "compare", "compare GPU times of two sides: report.json, Google Benchmark JSON, or a folder of report.json (one per run)");
+  cmd->add_option("baseline", args->baseline, "baseline: report.json, benchmark JSON, or a folder of runs")->required();
+  cmd->add_option("new", args->candidate, "new: report.json, benchmark JSON, or a folder of runs")->required();
+  addCompareFlags(*cmd, args->flags);
+  handlers()["compare"] = [args] {
+    return reportComparison(judgeSides(loadSide(args->baseline), loadSide(args->candidate), args->flags), args->flags);
+  };
 }
 
 }  // namespace aor::cli

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   aor::cli::registerCompareCommand(app);
   aor::cli::registerSweepCommand(app, help);
   aor::cli::registerTechniquesCommand(app);
+  aor::cli::registerAbCommand(app);
+  aor::cli::registerImportCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);

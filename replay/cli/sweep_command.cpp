@@ -88,7 +88,7 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
     double median = summarize(durations).median;
     row.passMs.emplace_back(name, median);
   }
-  row.totalMs = pipelineTotalMs(row.passMs);
+  row.totalMs = totalMedianMs(timedFrames(result));
   row.error = errors.summaryJson();
   row.rmse = row.error["rmse"].get<double>();
   row.ssim = row.error["ssim"].get<double>();

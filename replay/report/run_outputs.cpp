@@ -33,24 +33,16 @@ std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const Rep
   return passes;
 }
 
-namespace {
-
-// The medians of the host copies (hostCopies) or of the compute passes, summed.
-double sumOfMedians(const std::vector<std::pair<std::string, double>>& passMedians, bool hostCopies) {
-  double total = 0;
-  for (const auto& [name, median] : passMedians)
-    if (isHostCopyPass(name) == hostCopies) total += median;
-  return total;
+TimedFrame timedFrame(const FrameRecord& frame) {
+  TimedFrame timed;
+  for (const auto& p : frame.passes) timed.push_back({p.name, p.durationsMs});
+  return timed;
 }
 
-}  // namespace
-
-double pipelineTotalMs(const std::vector<std::pair<std::string, double>>& passMedians) {
-  return sumOfMedians(passMedians, false);
-}
-
-double hostCopiesTotalMs(const std::vector<std::pair<std::string, double>>& passMedians) {
-  return sumOfMedians(passMedians, true);
+std::vector<TimedFrame> timedFrames(const ReplayResult& result) {
+  std::vector<TimedFrame> frames;
+  for (const auto& f : result.frames) frames.push_back(timedFrame(f));
+  return frames;
 }
 
 void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
@@ -107,17 +99,15 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
                       {"chunk_frames", result.chunkFrames}};
 
   nlohmann::json passes = nlohmann::json::array();
-  std::vector<std::pair<std::string, double>> medians;
   for (const auto& [name, samples] : samplesByPass(result)) {
-    auto s = summarize(samples);
-    medians.emplace_back(name, s.median);
-    auto gpuMs = summaryJson(s);
+    auto gpuMs = summaryJson(summarize(samples));
     gpuMs["samples"] = samples;  // every timed run, frame-major: what `aoreplay compare` tests
     passes.push_back({{"name", name}, {"gpu_ms", gpuMs}});
   }
   report["passes"] = passes;
-  report["gpu_ms_total_median"] = pipelineTotalMs(medians);
-  report["gpu_ms_host_copies_median"] = hostCopiesTotalMs(medians);
+  auto frames = timedFrames(result);
+  report["gpu_ms_total_median"] = totalMedianMs(frames, PassGroup::Compute);
+  report["gpu_ms_host_copies_median"] = totalMedianMs(frames, PassGroup::HostCopies);
   nlohmann::json culled = nlohmann::json::array();
   for (const auto& c : result.culled) culled.push_back({{"name", c.name}, {"reason", c.reason}});
   report["culled_passes"] = culled;
@@ -125,7 +115,7 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
                       {"unaliased_gpu_bytes", result.unaliasedGpuBytes},
                       {"resources", result.resources}};
 
-  nlohmann::json frames = nlohmann::json::array();
+  nlohmann::json frameList = nlohmann::json::array();
   for (const auto& f : result.frames) {
     nlohmann::json frame{{"index", f.index}, {"history", f.historyValid ? "valid" : "reset"}};
     if (!f.historyValid) frame["reset_reason"] = f.resetReason;
@@ -142,9 +132,9 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
     }
     frame["invalid_depth_pixels"] = f.invalidDepthPixels;
     frame["invalid_normal_pixels"] = f.invalidNormalPixels;
-    frames.push_back(frame);
+    frameList.push_back(frame);
   }
-  report["frames"] = frames;
+  report["frames"] = frameList;
   report["setup_ms"] = result.setupMs;
   report["wall_ms"] = result.wallMs;
   report["replay_fps"] = result.wallMs > 0 ? 1000.0 * double(result.frames.size()) / result.wallMs : 0.0;
@@ -202,15 +192,15 @@ void writeText(const fs::path& path, const std::string& text) {
 void writeJson(const fs::path& path, const nlohmann::json& json) { writeText(path, json.dump(2) + "\n"); }
 
 std::string passTable(const ReplayResult& result) {
+  auto row = [](const std::string& name, const Summary& s) {
+    return fmt::format("{:<22} {:>10.3f} {:>10.3f} {:>10.3f} {:>8}\n", name, s.min, s.median, s.max, s.count);
+  };
   std::string table = fmt::format("{:<22} {:>10} {:>10} {:>10} {:>8}\n", "pass", "min ms", "median ms", "max ms", "runs");
-  std::vector<std::pair<std::string, double>> medians;
-  for (const auto& [name, samples] : samplesByPass(result)) {
-    auto s = summarize(samples);
-    medians.emplace_back(name, s.median);
-    table += fmt::format("{:<22} {:>10.3f} {:>10.3f} {:>10.3f} {:>8}\n", name, s.min, s.median, s.max, s.count);
-  }
-  table += fmt::format("{:<22} {:>10} {:>10.3f}   compute passes; host copies add {:.3f}\n", "total (medians)", "",
-                       pipelineTotalMs(medians), hostCopiesTotalMs(medians));
+  for (const auto& [name, samples] : samplesByPass(result)) table += row(name, summarize(samples));
+  auto frames = timedFrames(result);
+  table += row("total", summarize(repetitionSumsMs(frames, PassGroup::Compute)));
+  table += fmt::format("total: per timed run, the sum of the compute passes; host copies add {:.3f} (median)\n",
+                       totalMedianMs(frames, PassGroup::HostCopies));
   return table;
 }
 

@@ -9,6 +9,7 @@
 
 #include "capture/capture.h"
 #include "pipeline/replayer.h"
+#include "report/pipeline_time.h"
 
 namespace aor {
 
@@ -17,11 +18,9 @@ void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& fr
 void writeDebugImage(const std::filesystem::path& outDir, int frameIndex, const DebugImage& view);
 // Per pass name, every timed duration over all frames and repetitions, in first-seen order.
 std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
-// The pipeline's cost: the sum of the compute passes' medians. The harness's host copies (upload,
-// read-back) are left out, as in `aoreplay compare`'s total and ao_bench's `pipeline`.
-double pipelineTotalMs(const std::vector<std::pair<std::string, double>>& passMedians);
-// The host copies' medians, summed: what the total leaves out.
-double hostCopiesTotalMs(const std::vector<std::pair<std::string, double>>& passMedians);
+// A frame's pass durations as the totals of report/pipeline_time.h take them.
+TimedFrame timedFrame(const FrameRecord& frame);
+std::vector<TimedFrame> timedFrames(const ReplayResult& result);
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
 // Chrome trace-event format: one track for GPU passes, one for the host's per-frame phases.
 nlohmann::json buildTrace(const ReplayResult& result);
@@ -29,7 +28,8 @@ nlohmann::json buildTrace(const ReplayResult& result);
 void writeText(const std::filesystem::path& path, const std::string& text);
 // json.dump(2) and a newline, through writeText.
 void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
-// Per-pass table (min / median / max GPU ms over all timed runs) for the terminal.
+// Per-pass table (min / median / max GPU ms over all timed runs) for the terminal, and the total's
+// row: the same over the per-repetition sums of the compute passes (report/pipeline_time.h).
 std::string passTable(const ReplayResult& result);
 
 }  // namespace aor

@@ -144,7 +144,7 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
   out["frames"] = {info.frameBegin, info.frameEnd};
   out["repeat"] = info.repeat;
   out["warmup"] = info.warmup;
-  out["time"] = "GPU ms per frame: per pass, the median over frames x repeats; total = sum of the compute passes' medians (upload and read-back copies listed, not counted)";
+  out["time"] = "GPU ms per frame: per pass, the median over frames x repeats; total = the median over frames x repeats of the sum of the compute passes in that repeat (upload and read-back copies listed, not counted)";
   nlohmann::json list = nlohmann::json::array();
   for (const auto& row : rows) {
     nlohmann::json passes = nlohmann::json::object();

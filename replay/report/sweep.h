@@ -41,7 +41,7 @@ SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resol
 struct SweepRow {
   SweepConfig config;
   std::vector<std::pair<std::string, double>> passMs;  // per live pass, median over frames x repeats
-  double totalMs = 0;                                  // pipelineTotalMs: compute passes only
+  double totalMs = 0;                                  // totalMedianMs (report/pipeline_time.h)
   nlohmann::json error;                                // ErrorAnalysis::summaryJson()
   double rmse = 0, ssim = 0;
   bool pareto = false;

@@ -133,11 +133,15 @@ TEST(GroundTruth, SweepErrorFallsAsCostRises) {
   for (size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i]["configuration"], names[i]);
     EXPECT_GT(rows[i]["gpu_ms_total"].get<double>(), 0.0);
-    double computeMs = 0;  // the total is the compute passes', without the upload and read-back copies
-    for (const auto& [pass, ms] : rows[i]["gpu_ms_median"].items())
-      if (pass != "upload" && pass != "readback") computeMs += ms.get<double>();
+    // The total is the median over the timed runs of their sum of the compute passes (without the
+    // upload and read-back copies): every run's sum is at least each compute pass's time in it,
+    // so the total is at least each compute pass's median. (tests/gpu/cli_test.cpp checks the
+    // number itself on report.json, which has the samples; sweep computes it by the same function.)
     EXPECT_TRUE(rows[i]["gpu_ms_median"].contains("upload"));
-    EXPECT_NEAR(rows[i]["gpu_ms_total"].get<double>(), computeMs, 1e-9 * computeMs);
+    for (const auto& [pass, ms] : rows[i]["gpu_ms_median"].items())
+      if (pass != "upload" && pass != "readback") {
+        EXPECT_GE(rows[i]["gpu_ms_total"].get<double>(), ms.get<double>()) << pass;
+      }
     EXPECT_EQ(rows[i]["error"]["frames"].get<int>(), 6);  // every frame of the capture
     if (i > 0) {
       // Presets add samples in this order (1x2, 2x2, 3x3, 9x3): each one must be more accurate.

@@ -185,7 +185,9 @@ void expectHalfResolutionFiniteBoundedDeterministic(const fs::path& capture, con
   settings.halfRes = true;
   std::string name = caseName + " half_res=1";
   auto first = expectFiniteBoundedIdentical(capture, settingsOf(gtaoTechnique(), settings), name);
-  if (first.frames.size() > 1) EXPECT_TRUE(first.result.frames[1].historyValid) << name;  // history really blended
+  if (first.frames.size() > 1) {
+    EXPECT_TRUE(first.result.frames[1].historyValid) << name;  // history really blended
+  }
 }
 
 struct DeviationRow {
@@ -380,7 +382,9 @@ TEST_P(StressEveryTechnique, FiniteBoundedAndDeterministic) {
   if (!historyNeedsOf(settings, scene.frames).keeps) scene.frames = 1;
   fs::path path = stressCapture(c.name, scene);
   auto first = expectFiniteBoundedIdentical(path, settings, name + " " + c.name);
-  if (scene.frames > 1 && first.result.frames.size() > 1) EXPECT_TRUE(first.result.frames[1].historyValid) << name << " " << c.name;
+  if (scene.frames > 1 && first.result.frames.size() > 1) {
+    EXPECT_TRUE(first.result.frames[1].historyValid) << name << " " << c.name;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Techniques, StressEveryTechnique, ::testing::ValuesIn(techniqueStressCases()),

@@ -87,7 +87,9 @@ TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
     for (const auto& p : t["parameters"]) {
       keys.push_back(p["key"]);
       EXPECT_TRUE(p.contains("default") && p.contains("doc")) << p.dump();
-      if (p["type"] != "enum") EXPECT_TRUE(p.contains("min") && p.contains("max")) << p.dump();
+      if (p["type"] != "enum") {
+        EXPECT_TRUE(p.contains("min") && p.contains("max")) << p.dump();
+      }
     }
     EXPECT_EQ(keys, expected->second) << t["name"];
   }
@@ -101,7 +103,9 @@ TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
           EXPECT_EQ(p["min"], 1);
           EXPECT_EQ(p["max"], 32);
         }
-        if (p["key"] == "falloff") EXPECT_EQ(p["default"], 0.615);
+        if (p["key"] == "falloff") {
+          EXPECT_EQ(p["default"], 0.615);
+        }
         if (p["key"] == "temporal") {
           EXPECT_EQ(p["default"], 0.9);
           EXPECT_EQ(p["max"], 0.98);

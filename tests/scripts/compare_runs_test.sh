@@ -30,7 +30,7 @@ if [ "$command" = run ]; then
 else
   json=
   while [ $# -gt 0 ]; do [ "$1" = --json ] && json=$2; shift; done
-  echo '{"passes": [{"name": "total", "verdict": "same", "change": 0.0}]}' > "$json"
+  echo '{"passes": [{"name": "total", "verdict": "same", "ratio": 1.0}]}' > "$json"
 fi
 STUB
 chmod +x "$scratch/build/replay/aoreplay"

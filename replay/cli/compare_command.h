@@ -1,0 +1,29 @@
+#pragma once
+// What `aoreplay compare` and `aoreplay ab` share: the judging flags, and judging two sides.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "report/compare.h"
+
+namespace aor::cli {
+
+struct CompareFlags {
+  std::string json;                 // --json FILE: the verdicts as JSON
+  std::vector<std::string> ignore;  // --ignore REGEX...
+  CompareOptions options;
+};
+
+// --json, --ignore, --alpha, --min-effect, --min-effect-ms, --spread-multiple, --judge-host-copies, --fail-on-unknown.
+void addCompareFlags(CLI::App& command, CompareFlags& flags);
+
+// The comparison of the two sides without the --ignore'd names. Throws InputError when no name is
+// on both sides.
+Comparison judgeSides(SideTimings baseline, SideTimings candidate, const CompareFlags& flags);
+
+// Prints the table, writes --json when given, and returns the exit status: 1 when the comparison
+// fails (a judged name slower, or unknown with --fail-on-unknown), else 0.
+int reportComparison(const Comparison& comparison, const CompareFlags& flags);
+
+}  // namespace aor::cli

@@ -1,0 +1,59 @@
+// `aoreplay import renderdoc FILE.rdc...`: a bug frame captured with RenderDoc becomes an aoreplay
+// capture (replay/import/, README "From a RenderDoc capture").
+#include <cstdio>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/handlers.h"
+#include "import/renderdoc_import.h"
+
+namespace aor::cli {
+namespace {
+
+struct ImportArgs {
+  RenderDocImportOptions options;
+  std::vector<std::string> files;
+  std::string framesFromDir, out, passName;
+  int event = -1;
+};
+
+int importCommand(ImportArgs& args) {
+  RenderDocImportOptions& o = args.options;
+  o.files.assign(args.files.begin(), args.files.end());
+  if (!args.framesFromDir.empty()) o.framesFromDir = args.framesFromDir;
+  o.out = args.out;
+  if (args.event >= 0) o.event = args.event;
+  if (!args.passName.empty()) o.passName = args.passName;
+  importRenderDoc(o, stdout);
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerImportCommand(CLI::App& app) {
+  auto args = std::make_shared<ImportArgs>();
+  auto* cmd = app.add_subcommand("import", "make a capture from another tool's frame capture");
+  cmd->require_subcommand(1);
+  auto* rd = cmd->add_subcommand("renderdoc", "import the depth, normals and camera of one draw per RenderDoc capture");
+  RenderDocImportOptions& o = args->options;
+  rd->add_option("files", args->files, "RenderDoc captures (.rdc), one frame each, in file-name order");
+  rd->add_option("--out", args->out, "capture folder to write")->required();
+  auto* event = rd->add_option("--event", args->event, "event ID to import (default: the last draw with a depth target)")
+                    ->check(CLI::NonNegativeNumber);
+  rd->add_option("--pass", args->passName, "the last draw with a depth target inside this marker region")
+      ->excludes(event);
+  rd->add_option("--depth", o.depth, "auto, or the depth texture (RenderDoc's name, ResourceId::N or N)")
+      ->capture_default_str();
+  rd->add_option("--normals", o.normals, "the normal target (name or ID), or none")->capture_default_str();
+  rd->add_option("--normals-space", o.normalsSpace, "world | view: the space the normal target holds")
+      ->check(CLI::IsMember({"world", "view"}))
+      ->capture_default_str();
+  rd->add_option("--view", o.view, "world -> view matrix: BLOCK.member of a uniform block")->required();
+  rd->add_option("--projection", o.projection, "view -> clip matrix: BLOCK.member of a uniform block")->required();
+  rd->add_option("--frames-from-dir", args->framesFromDir, "every .rdc in this folder, one frame each");
+  rd->add_option("--renderdoc-python", o.renderdocPython,
+                 "folder holding renderdoc.so of a RenderDoc build (default: Debian's python3-renderdoc)");
+  handlers()["import"] = [args] { return importCommand(*args); };
+}
+
+}  // namespace aor::cli

@@ -1,0 +1,135 @@
+#include "import/renderdoc_camera.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
+#include "import/import_problem.h"
+
+namespace aor {
+
+namespace {
+
+constexpr const char* kSeparateMatrices =
+    "the import needs the world -> view matrix (--view) and the view -> clip projection (--projection) as separate "
+    "members; a combined view-projection or model-view-projection matrix is not supported";
+
+std::string lastRow(const glm::mat4& m) {
+  return fmt::format("({:g}, {:g}, {:g}, {:g})", m[0][3], m[1][3], m[2][3], m[3][3]);
+}
+
+void requireFinite(const glm::mat4& m, const std::string& name, const char* field) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r]))
+        throw ImportProblem(field, fmt::format("{} has a non-finite entry (row {}, column {}: {})", name, r, c, m[c][r]));
+}
+
+}  // namespace
+
+glm::mat4 matrixFromRows(const std::array<float, 16>& rows) {
+  glm::mat4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m[c][r] = rows[size_t(4 * r + c)];
+  return m;
+}
+
+void checkViewMatrix(const glm::mat4& view, const std::string& name) {
+  requireFinite(view, name, "--view");
+  if (view[0][3] != 0.0f || view[1][3] != 0.0f || view[2][3] != 0.0f || view[3][3] != 1.0f)
+    throw ImportProblem("--view", fmt::format("{} is not a world -> view transform: its last row is {}, a rigid or "
+                                              "affine transform's is (0, 0, 0, 1); {}",
+                                              name, lastRow(view), kSeparateMatrices));
+  // As the capture format checks it: |det| against the product of the column lengths.
+  const glm::dmat4 d(view);
+  double scale = 1.0;
+  for (int c = 0; c < 4; ++c) scale *= glm::length(d[c]);
+  const double det = glm::determinant(d);
+  if (!(std::abs(det) > 1e-12 * scale))
+    throw ImportProblem("--view", fmt::format("{} is singular (determinant {:g}): not a world -> view transform", name,
+                                              det));
+}
+
+void checkProjectionMatrix(const glm::mat4& p, const std::string& name) {
+  requireFinite(p, name, "--projection");
+  if (p[0][3] == 0.0f && p[1][3] == 0.0f && p[2][3] == 0.0f && p[3][3] == 1.0f)
+    throw ImportProblem("--projection", fmt::format("{} is not a perspective projection: its last row is (0, 0, 0, 1), "
+                                                    "an orthographic projection's (or no projection at all); only "
+                                                    "perspective projections are supported",
+                                                    name));
+  if (p[0][3] != 0.0f || p[1][3] != 0.0f || std::abs(p[2][3]) != 1.0f || p[3][3] != 0.0f)
+    throw ImportProblem("--projection", fmt::format("{} is not a perspective projection: its last row is {}, a "
+                                                    "perspective projection's is (0, 0, -1, 0) (or (0, 0, 1, 0) "
+                                                    "left-handed); {}",
+                                                    name, lastRow(p), kSeparateMatrices));
+  static const int zeros[][2] = {{0, 1}, {0, 2}, {1, 0}, {1, 2}, {3, 0}, {3, 1}};  // [column][row]
+  for (const auto& z : zeros)
+    if (p[z[0]][z[1]] != 0.0f)
+      throw ImportProblem("--projection", fmt::format("{} is not a perspective projection: row {}, column {} is {:g} "
+                                                      "where a perspective projection has 0; {}",
+                                                      name, z[1], z[0], p[z[0]][z[1]], kSeparateMatrices));
+  static const int nonZeros[][2] = {{0, 0}, {1, 1}, {3, 2}};
+  for (const auto& z : nonZeros)
+    if (p[z[0]][z[1]] == 0.0f)
+      throw ImportProblem("--projection", fmt::format("{} is singular (row {}, column {} is 0)", name, z[1], z[0]));
+}
+
+ViewportRect viewportRect(float x, float y, float width, float height, float minDepth, float maxDepth,
+                          int targetWidth, int targetHeight) {
+  ViewportRect v;
+  v.flipsY = height < 0.0f;
+  const float top = v.flipsY ? y + height : y;  // a negative height counts up from y
+  const float h = std::abs(height);
+  const auto whole = [](float f) { return std::isfinite(f) && f == std::floor(f); };
+  const std::string text = fmt::format("{:g}x{:g} at ({:g}, {:g})", width, height, x, y);
+  if (!whole(x) || !whole(top) || !whole(width) || !whole(h) || width <= 0.0f || h <= 0.0f)
+    throw ImportProblem("--event", fmt::format("the draw's viewport {} is not a whole-pixel rectangle: not supported",
+                                               text));
+  if (x < 0.0f || top < 0.0f || x + width > float(targetWidth) || top + h > float(targetHeight))
+    throw ImportProblem("--event", fmt::format("the draw's viewport {} reaches outside the {}x{} depth target", text,
+                                               targetWidth, targetHeight));
+  if (minDepth != 0.0f || maxDepth != 1.0f)
+    throw ImportProblem("--event", fmt::format("the draw's viewport maps depth to [{:g}, {:g}]; only [0, 1] is "
+                                               "supported (reversed depth belongs in the projection)",
+                                               minDepth, maxDepth));
+  v.x = int(x), v.y = int(top), v.width = int(width), v.height = int(h);
+  return v;
+}
+
+ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool viewportFlipsY) {
+  ImportedCamera c{view, projection, {}};
+  if (projection[2][3] == 1.0f) {  // left-handed: S = diag(1, 1, -1, 1); view' = S view, projection' = P S
+    for (int col = 0; col < 4; ++col) c.view[col][2] = -c.view[col][2];
+    c.projection[2] = -c.projection[2];
+    c.adjustments.push_back("left-handed view space: z flipped in view and projection");
+  }
+  if (viewportFlipsY) {  // F = diag(1, -1, 1, 1): projection' = F P
+    for (int col = 0; col < 4; ++col) c.projection[col][1] = -c.projection[col][1];
+    c.adjustments.push_back("negative viewport height: projection y flipped");
+  }
+  return c;
+}
+
+std::string describeProjection(const glm::mat4& p) {
+  const bool reversed = p[3][2] > 0.0f;
+  const double p22 = p[2][2], p32 = p[3][2];
+  // d = (P22 z + P32) / -z: standard depth has d = 0 at the near plane, reversed d = 1 there.
+  const double nearPlane = reversed ? p32 / (1.0 + p22) : p32 / p22;
+  const double farPlane = reversed ? (p22 == 0.0 ? INFINITY : p32 / p22) : (p22 == -1.0 ? INFINITY : p32 / (1.0 + p22));
+  const double fov = 2.0 * std::atan(1.0 / std::abs(double(p[1][1]))) * 180.0 / M_PI;
+  return fmt::format("perspective, {} depth, near {:.4g}, far {:.4g}, vertical field of view {:.1f} degrees",
+                     reversed ? "reversed" : "standard", nearPlane, farPlane, fov);
+}
+
+void viewNormalsToWorld(std::vector<float>& normals, const glm::mat4& view) {
+  const glm::mat3 worldFromView = glm::transpose(glm::mat3(view));
+  for (size_t i = 0; i + 2 < normals.size(); i += 3) {
+    const glm::vec3 n(normals[i], normals[i + 1], normals[i + 2]);
+    if (n == glm::vec3(0.0f)) continue;  // an empty (cleared) texel stays empty
+    const glm::vec3 w = glm::normalize(worldFromView * n);
+    normals[i] = w.x, normals[i + 1] = w.y, normals[i + 2] = w.z;
+  }
+}
+
+}  // namespace aor

@@ -1,0 +1,46 @@
+#pragma once
+// Turns the view and projection matrices read from a RenderDoc capture, and the draw's viewport,
+// into a capture's camera (captures/FORMAT.md): checked to be a world -> view transform and a
+// perspective projection with messages that say what is wrong (a combined matrix, mostly), and
+// brought to the format's conventions by exact sign flips where the application's differ.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+namespace aor {
+
+// RenderDoc gives a matrix's 16 values row by row, whatever the shader declared.
+glm::mat4 matrixFromRows(const std::array<float, 16>& rows);
+
+// Throw ImportProblem (field --view / --projection) naming `name` (BLOCK.member) and the problem.
+void checkViewMatrix(const glm::mat4& view, const std::string& name);
+void checkProjectionMatrix(const glm::mat4& projection, const std::string& name);  // left-handed allowed
+
+// The pixels of the depth target the draw's viewport covers (the capture is cropped to them).
+struct ViewportRect {
+  int x = 0, y = 0, width = 0, height = 0;
+  bool flipsY = false;  // negative viewport height: image rows run up NDC y
+};
+// Throws ImportProblem (field --event) for a viewport that is fractional, leaves the target, or
+// maps depth to a range other than [0, 1].
+ViewportRect viewportRect(float x, float y, float width, float height, float minDepth, float maxDepth,
+                          int targetWidth, int targetHeight);
+
+struct ImportedCamera {
+  glm::mat4 view{1.0f}, projection{1.0f};
+  std::vector<std::string> adjustments;  // what was changed, for the summary and capture.json
+};
+// Left-handed view spaces get z flipped (view and projection together, so clip space is
+// unchanged); a flipped viewport flips the projection's y instead. Both are exact negations.
+ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool viewportFlipsY);
+
+// "perspective, standard depth, near 0.1, far 40, vertical field of view 60.0 degrees".
+std::string describeProjection(const glm::mat4& projection);
+
+// World-space normals from view-space ones of the application's `view` (normals transform with
+// the inverse transpose; world from view is therefore view's 3x3 transposed), renormalised.
+void viewNormalsToWorld(std::vector<float>& normals, const glm::mat4& view);
+
+}  // namespace aor

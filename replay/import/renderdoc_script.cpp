@@ -1,0 +1,98 @@
+#include "import/renderdoc_script.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "capture/input_error.h"
+#include "import/subprocess.h"
+
+namespace aor {
+
+extern const std::string_view kRenderDocDumpScript;  // renderdoc_dump.py, embedded at build time
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Replaying a small frame takes about a second; a capture RenderDoc loops on is bad input.
+constexpr std::chrono::seconds kDumpTimeLimit{300};
+
+std::string readWhole(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The last non-empty lines of what the script printed, joined for a one-line message.
+std::string tail(const std::string& text, size_t lines = 4) {
+  std::vector<std::string> kept;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.find_first_not_of(" \t\r") != std::string::npos) kept.push_back(line);
+  if (kept.empty()) return "(nothing)";
+  std::string joined;
+  for (size_t i = kept.size() > lines ? kept.size() - lines : 0; i < kept.size(); ++i)
+    joined += (joined.empty() ? "" : " | ") + kept[i];
+  return joined;
+}
+
+std::vector<std::string> scriptArguments(const DumpRequest& r, const fs::path& script) {
+  std::vector<std::string> args = {renderDocPythonInterpreter(), script.string(), r.capture.string(),
+                                   "--out", r.workDir.string(), "--depth", r.depth, "--normals", r.normals,
+                                   "--view", r.view, "--projection", r.projection};
+  if (!r.renderdocPython.empty()) args.insert(args.end(), {"--renderdoc-python", r.renderdocPython});
+  if (r.event) args.insert(args.end(), {"--event", std::to_string(*r.event)});
+  if (r.passName) args.insert(args.end(), {"--pass", *r.passName});
+  return args;
+}
+
+}  // namespace
+
+std::string renderDocPythonInterpreter() {
+  if (const char* chosen = std::getenv("AOREPLAY_PYTHON"); chosen && *chosen) return chosen;
+  if (::access("/usr/bin/python3", X_OK) == 0) return "/usr/bin/python3";
+  return "python3";
+}
+
+nlohmann::json runRenderDocDump(const DumpRequest& r) {
+  const fs::path script = r.workDir / "renderdoc_dump.py";
+  std::ofstream(script, std::ios::binary).write(kRenderDocDumpScript.data(), std::streamsize(kRenderDocDumpScript.size()));
+  std::map<std::string, std::string> environment;
+  if (!r.renderdocPython.empty()) {  // a RenderDoc build's module loads its librenderdoc.so from there
+    const char* old = std::getenv("LD_LIBRARY_PATH");
+    environment["LD_LIBRARY_PATH"] = r.renderdocPython + (old && *old ? std::string(":") + old : "");
+  }
+  const fs::path out = r.workDir / "script.out", err = r.workDir / "script.err";
+  const ProcessResult p = runProcess(scriptArguments(r, script), environment, out, err, kDumpTimeLimit);
+  const std::string python = renderDocPythonInterpreter();
+  if (!p.started)
+    throw InputError(python, std::nullopt, "",
+                     fmt::format("cannot run Python ({}): the RenderDoc import needs Debian's python3 and "
+                                 "python3-renderdoc (apt-get install python3 python3-renderdoc), or AOREPLAY_PYTHON "
+                                 "naming a Python 3",
+                                 p.startError));
+  if (p.timedOut)
+    throw InputError(r.capture.string(), std::nullopt, "",
+                     fmt::format("RenderDoc did not finish replaying it within {} s", kDumpTimeLimit.count()));
+  if (p.signal)
+    throw InputError(r.capture.string(), std::nullopt, "",
+                     fmt::format("RenderDoc crashed replaying it (signal {}); its last output: {}", p.signal,
+                                 tail(readWhole(err))));
+  if (p.exitCode != 0 || !fs::exists(r.workDir / "dump.json"))
+    throw std::runtime_error(fmt::format("the RenderDoc dump script ({}) failed on {} (exit {}): {}", python,
+                                         r.capture.string(), p.exitCode, tail(readWhole(err))));
+  try {
+    return nlohmann::json::parse(readWhole(r.workDir / "dump.json"));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(fmt::format("the RenderDoc dump script wrote malformed JSON: {}", e.what()));
+  }
+}
+
+}  // namespace aor

@@ -1,0 +1,87 @@
+#include "import/subprocess.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+
+namespace aor {
+
+namespace {
+
+// The child: redirect, adjust the environment, exec; on failure report errno through `errorPipe`
+// (closed on a successful exec, so the parent reads nothing then).
+[[noreturn]] void execChild(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
+                            const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
+                            int errorPipe) {
+  const int out = ::open(stdoutFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int err = ::open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int in = ::open("/dev/null", O_RDONLY);
+  if (out >= 0) ::dup2(out, STDOUT_FILENO);
+  if (err >= 0) ::dup2(err, STDERR_FILENO);
+  if (in >= 0) ::dup2(in, STDIN_FILENO);
+  for (const auto& [key, value] : environment) ::setenv(key.c_str(), value.c_str(), 1);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  ::execvp(args[0], args.data());
+  const int code = errno;
+  [[maybe_unused]] auto written = ::write(errorPipe, &code, sizeof code);
+  ::_exit(127);
+}
+
+}  // namespace
+
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
+                         const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
+                         std::chrono::seconds timeLimit) {
+  ProcessResult result;
+  int errorPipe[2];
+  if (argv.empty() || ::pipe2(errorPipe, O_CLOEXEC) != 0) {
+    result.startError = argv.empty() ? "no program" : std::strerror(errno);
+    return result;
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    result.startError = std::strerror(errno);
+    ::close(errorPipe[0]);
+    ::close(errorPipe[1]);
+    return result;
+  }
+  if (pid == 0) execChild(argv, environment, stdoutFile, stderrFile, errorPipe[1]);
+  ::close(errorPipe[1]);
+  int execErrno = 0;
+  const bool execFailed = ::read(errorPipe[0], &execErrno, sizeof execErrno) == sizeof execErrno;
+  ::close(errorPipe[0]);
+
+  const auto deadline = std::chrono::steady_clock::now() + timeLimit;
+  int status = 0;
+  while (true) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) break;
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      result.started = !execFailed;
+      result.timedOut = true;
+      return result;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (execFailed) {
+    result.startError = std::strerror(execErrno);
+    return result;
+  }
+  result.started = true;
+  if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+  return result;
+}
+
+}  // namespace aor

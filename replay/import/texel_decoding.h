@@ -1,0 +1,28 @@
+#pragma once
+// Decodes the texels RenderDoc's GetTextureData returns for a depth attachment or a normal target
+// into the floats of a capture's G-buffer. Formats are named as RenderDoc names them.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aor {
+
+struct TexelImage {
+  int width = 0, height = 0;
+  std::string format;       // RenderDoc's name: D16, D24, D24S8, D32, D32S8, R16G16B16A16_FLOAT, ...
+  bool bgra = false;        // components stored B, G, R(, A)
+  std::vector<uint8_t> bytes;
+};
+
+// Depth values as Vulkan defines them: unorm texels c / (2^bits - 1), float texels as they are.
+// Throws ImportProblem (field --depth) for other formats or a size that does not fit the format.
+std::vector<float> decodeDepth(const TexelImage& image);
+const char* supportedDepthFormats();
+
+// Normals, xyz interleaved per pixel. Float targets are taken as they hold them; fixed-point ones
+// are unpacked (unorm: 2c - 1, snorm: c) and normalised (a zero vector stays zero).
+// Throws ImportProblem (field --normals) for formats with fewer than three components or unknown.
+std::vector<float> decodeNormals(const TexelImage& image);
+const char* supportedNormalFormats();
+
+}  // namespace aor

@@ -1,0 +1,407 @@
+// `aoreplay import renderdoc` on frames rd_scene captured through RenderDoc's in-application API:
+// depth, normals and matrices bit for bit against the program's own read-back, depth against the
+// analytic depth of the known scene, for five depth formats, standard and reversed; the import
+// replayed validated; frame order; and bad inputs refused with exit 2 and nothing in --out.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "capture/capture.h"
+#include "scene.h"
+
+namespace aor::rdtest {
+namespace {
+namespace fs = std::filesystem;
+
+struct Command {
+  int exitCode = -1;
+  std::string output;
+};
+
+Command run(const std::string& command) {
+  Command result;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+Command aoreplay(const std::string& arguments, const std::string& environment = "") {
+  return run(fmt::format("{} {} {}", environment, AOR_EXE, arguments));
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(AOR_BINARY_DIR) / "renderdoc-tests" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+template <typename T>
+std::vector<T> readBinary(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+  std::vector<T> values(bytes.size() / sizeof(T));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
+  return values;
+}
+
+std::string readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+nlohmann::json readJson(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+glm::mat4 matrixOf(const nlohmann::json& a) {
+  glm::mat4 m;
+  for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = a.at(size_t(i)).get<float>();
+  return m;
+}
+
+bool sameBits(const glm::mat4& a, const glm::mat4& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+float halfToFloat(uint16_t h) {
+  const int e = (h >> 10) & 0x1F, m = h & 0x3FF;
+  const float s = (h & 0x8000) ? -1.0f : 1.0f;
+  if (e == 0) return s * std::ldexp(float(m), -24);
+  return s * std::ldexp(float(m | 0x400), e - 25);
+}
+
+// rd_scene's frames: captures in DIR/captures, read-back in DIR/readback.
+fs::path renderScene(const std::string& name, const std::string& format, bool reversed, int frames = 1) {
+  const fs::path dir = scratch(name);
+  const Command c = run(fmt::format("{} --depth-format {} {} --frames {} --capture-dir {} --readback-dir {}",
+                                    RD_SCENE_EXE, format, reversed ? "--reversed" : "", frames,
+                                    (dir / "captures").string(), (dir / "readback").string()));
+  EXPECT_EQ(c.exitCode, 0) << c.output;
+  return dir;
+}
+
+const char* kCamera = "--view camera.view --projection camera.projection";
+// rd_scene's event IDs as RenderDoc 1.24 numbers them: the G-buffer pass draws the floor, then
+// the three boxes; the overlay pass draws without a depth attachment.
+constexpr int kFloorDraw = 14, kLastGBufferDraw = 17, kOverlayDraw = 26;
+
+struct DepthCase {
+  const char* format;
+  const char* renderdocName;
+  bool reversed;
+  double quantum;  // one step of the format at depth 1
+};
+
+void PrintTo(const DepthCase& c, std::ostream* os) { *os << c.format << (c.reversed ? " reversed" : " standard"); }
+
+class ImportMatchesReadBack : public ::testing::TestWithParam<DepthCase> {};
+
+TEST_P(ImportMatchesReadBack, DepthNormalsAndMatricesBitForBitAndDepthAnalytic) {
+  const DepthCase& c = GetParam();
+  const std::string name = fmt::format("{}-{}", c.format, c.reversed ? "reversed" : "standard");
+  const fs::path dir = renderScene(name, c.format, c.reversed);
+  const fs::path out = dir / "imported";
+  const Command r = aoreplay(fmt::format("import renderdoc {} --out {} --normals gbuffer.normals {}",
+                                         (dir / "captures" / "0000.rdc").string(), out.string(), kCamera));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find(fmt::format("event {} vkCmdDraw() in gbuffer: last draw with a depth target",
+                                      kLastGBufferDraw)),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("depth: gbuffer.depth (id"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(fmt::format("{} 160x90", c.renderdocName)), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(c.reversed ? "reversed depth, near 0.1, far 40" : "standard depth, near 0.1, far 40"),
+            std::string::npos) << r.output;
+
+  const Capture capture = loadCapture(out);
+  ASSERT_EQ(capture.frames.size(), 1u);
+  ASSERT_EQ(capture.width, 160);
+  ASSERT_EQ(capture.height, 90);
+  const nlohmann::json& scene = capture.scene.at("frames").at(0);
+  EXPECT_EQ(scene.at("event"), kLastGBufferDraw);
+  EXPECT_EQ(scene.at("depth").at("format"), c.renderdocName);
+  EXPECT_EQ(scene.at("normals").at("resource"), "gbuffer.normals");
+  EXPECT_EQ(scene.at("projection"), "camera.projection (vertex shader, row-major)");
+  EXPECT_EQ(scene.at("view"), "camera.view (vertex shader, column-major)");
+
+  const nlohmann::json meta = readJson(dir / "readback" / "0000.json");
+  EXPECT_TRUE(sameBits(capture.frames[0].view, matrixOf(meta.at("view"))));
+  EXPECT_TRUE(sameBits(capture.frames[0].projection, matrixOf(meta.at("projection"))));
+
+  const GBuffer g = loadGBuffer(capture, 0);
+  const std::vector<float> depth = readBinary<float>(dir / "readback" / "0000.depth");
+  ASSERT_EQ(g.depth.size(), depth.size());
+  EXPECT_EQ(std::memcmp(g.depth.data(), depth.data(), depth.size() * sizeof(float)), 0) << "depth bit for bit";
+  const std::vector<uint16_t> normals = readBinary<uint16_t>(dir / "readback" / "0000.normals");
+  ASSERT_EQ(g.normals.size(), depth.size() * 3);
+  size_t normalMismatches = 0;
+  for (size_t i = 0; i < depth.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const float expected = halfToFloat(normals[4 * i + size_t(k)]);
+      if (std::memcmp(&g.normals[3 * i + size_t(k)], &expected, sizeof expected) != 0) ++normalMismatches;
+    }
+  EXPECT_EQ(normalMismatches, 0u) << "normals (RGBA16F, written as HALF) bit for bit";
+
+  // Analytic depth of the known scene at each pixel centre, away from silhouettes (where the
+  // rasteriser's coverage and the ray may see different surfaces).
+  const Camera camera = sceneCamera(0, 160, 90, c.reversed);
+  const glm::dmat4 toWorld = glm::inverse(glm::dmat4(camera.view));
+  const glm::dvec3 eye(toWorld[3]);
+  const glm::dmat4 p(camera.projection);
+  std::vector<int> surface(depth.size(), -1);
+  std::vector<double> analytic(depth.size(), c.reversed ? 0.0 : 1.0);
+  for (int y = 0; y < 90; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const double nx = (2.0 * x + 1.0) / 160.0 - 1.0, ny = (2.0 * y + 1.0) / 90.0 - 1.0;
+      const glm::dvec3 dirView(nx / p[0][0], ny / p[1][1], -1.0);
+      const auto hit = intersectScene(eye, glm::dmat3(toWorld) * dirView);
+      if (!hit) continue;
+      const double z = -hit->t;  // dirView has z = -1, and the view is rigid
+      surface[size_t(y * 160 + x)] = hit->surface;
+      analytic[size_t(y * 160 + x)] = (p[2][2] * z + p[3][2]) / -z;
+    }
+  double maxError = 0.0;
+  size_t compared = 0, sky = 0, skyMismatches = 0;
+  for (int y = 1; y < 89; ++y)
+    for (int x = 1; x < 159; ++x) {
+      const size_t i = size_t(y * 160 + x);
+      bool interior = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) interior = interior && surface[i + size_t(dy * 160 + dx)] == surface[i];
+      if (!interior) continue;
+      if (surface[i] < 0) {
+        ++sky;
+        skyMismatches += g.depth[i] != (c.reversed ? 0.0f : 1.0f);
+        continue;
+      }
+      ++compared;
+      maxError = std::max(maxError, std::abs(double(g.depth[i]) - analytic[i]));
+    }
+  EXPECT_GT(compared, 7000u) << "most of the image is floor and boxes";
+  EXPECT_GT(sky, 300u) << "and some is sky";
+  EXPECT_EQ(skyMismatches, 0u) << "sky is the cleared far value exactly";
+  // Two steps of the format, plus four float32 steps at 1: the rasteriser interpolates z/w in float.
+  EXPECT_LT(maxError, 2.0 * c.quantum + 4.0 * 5.96e-8) << "max |depth - analytic|";
+  std::printf("[ %s ] %zu pixels, max |depth - analytic| = %.3g (format step %.3g)\n", name.c_str(), compared,
+              maxError, c.quantum);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, ImportMatchesReadBack,
+                         ::testing::Values(DepthCase{"d16", "D16", false, 1.0 / 65535},
+                                           DepthCase{"d16", "D16", true, 1.0 / 65535},
+                                           DepthCase{"x8d24", "D24", false, 1.0 / 16777215},
+                                           DepthCase{"d24s8", "D24S8", true, 1.0 / 16777215},
+                                           DepthCase{"d32", "D32", true, 6e-8},
+                                           DepthCase{"d32s8", "D32S8", false, 6e-8}),
+                         [](const auto& info) {
+                           return std::string(info.param.format) + (info.param.reversed ? "_reversed" : "_standard");
+                         });
+
+TEST(RenderDocImport, ImportedFrameReplaysValidated) {
+  const fs::path dir = renderScene("replay", "d24s8", false);
+  const fs::path capture = dir / "imported";
+  const Command i = aoreplay(fmt::format("import renderdoc {} --out {} {}", (dir / "captures" / "0000.rdc").string(),
+                                         capture.string(), kCamera));
+  ASSERT_EQ(i.exitCode, 0) << i.output;
+  EXPECT_NE(i.output.find("normals: none (reconstructed from depth on replay)"), std::string::npos) << i.output;
+  const Command again = aoreplay(fmt::format("import renderdoc {} --out {} {}",
+                                             (dir / "captures" / "0000.rdc").string(), (dir / "again").string(), kCamera));
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  for (const char* file : {"capture.json", "frames/0000.exr"})
+    EXPECT_EQ(readBytes(capture / file), readBytes(dir / "again" / file)) << file << ": the same .rdc, the same bytes";
+  const Command r = aoreplay(fmt::format("run {} --validate --out {}", capture.string(), (dir / "run").string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json report = readJson(dir / "run" / "report.json");
+  EXPECT_EQ(report.at("frames").size(), 1u);
+  EXPECT_TRUE(fs::exists(dir / "run" / "ao" / "0000.exr"));
+}
+
+TEST(RenderDocImport, SeveralCapturesAreFramesInFileNameOrder) {
+  const fs::path dir = renderScene("frames", "d32", false, 3);
+  const fs::path fromDir = dir / "from-dir", fromFiles = dir / "from-files";
+  const Command a = aoreplay(fmt::format("import renderdoc --frames-from-dir {} --out {} {}",
+                                         (dir / "captures").string(), fromDir.string(), kCamera));
+  ASSERT_EQ(a.exitCode, 0) << a.output;
+  const fs::path c = dir / "captures";
+  const Command b = aoreplay(fmt::format("import renderdoc {} {} {} --out {} {}", (c / "0002.rdc").string(),
+                                         (c / "0000.rdc").string(), (c / "0001.rdc").string(), fromFiles.string(),
+                                         kCamera));
+  ASSERT_EQ(b.exitCode, 0) << b.output;
+  EXPECT_NE(b.output.find("capture: " + fromFiles.string() + " (3 frames, 160x90, depth only)"), std::string::npos)
+      << b.output;
+  for (const fs::path& out : {fromDir, fromFiles}) {
+    const Capture capture = loadCapture(out);
+    ASSERT_EQ(capture.frames.size(), 3u);
+    for (int f = 0; f < 3; ++f) {
+      const nlohmann::json meta = readJson(dir / "readback" / fmt::format("{:04}.json", f));
+      EXPECT_TRUE(sameBits(capture.frames[size_t(f)].view, matrixOf(meta.at("view")))) << out << " frame " << f;
+      EXPECT_EQ(capture.scene.at("frames").at(size_t(f)).at("file"), fmt::format("{:04}.rdc", f));
+    }
+  }
+}
+
+TEST(RenderDocImport, PassAndEventChooseTheDraw) {
+  const fs::path dir = renderScene("events", "d16", false);
+  const std::string rdc = (dir / "captures" / "0000.rdc").string();
+  const Command pass = aoreplay(fmt::format("import renderdoc {} --pass gbuffer --out {} {}", rdc,
+                                            (dir / "pass").string(), kCamera));
+  ASSERT_EQ(pass.exitCode, 0) << pass.output;
+  EXPECT_NE(pass.output.find(fmt::format("event {} vkCmdDraw() in gbuffer: last draw with a depth target in pass "
+                                         "gbuffer", kLastGBufferDraw)),
+            std::string::npos) << pass.output;
+  const Command event = aoreplay(fmt::format("import renderdoc {} --event {} --out {} {}", rdc, kFloorDraw,
+                                             (dir / "event").string(), kCamera));
+  ASSERT_EQ(event.exitCode, 0) << event.output;
+  // The floor alone; the boxes drawn after it only bring depth nearer.
+  const GBuffer floorOnly = loadGBuffer(loadCapture(dir / "event"), 0);
+  const GBuffer all = loadGBuffer(loadCapture(dir / "pass"), 0);
+  size_t nearer = 0, farther = 0;
+  for (size_t i = 0; i < all.depth.size(); ++i) {
+    nearer += all.depth[i] < floorOnly.depth[i];
+    farther += all.depth[i] > floorOnly.depth[i];
+  }
+  EXPECT_GT(nearer, 300u) << "the boxes";
+  EXPECT_EQ(farther, 0u);
+  EXPECT_EQ(loadCapture(dir / "event").scene.at("frames").at(0).at("event_chosen"), "--event");
+}
+
+// Bad input: exit 2, a message naming the file and the problem, and no --out (nor a staging
+// folder beside it) afterwards; an earlier capture at --out is left as it was.
+class BadInput : public ::testing::Test {
+ protected:
+  // Test processes run in parallel under ctest: each renders its own scene.
+  static void SetUpTestSuite() { sceneDir_ = renderScene(fmt::format("bad-input-{}", getpid()), "d32", false); }
+  static void TearDownTestSuite() { fs::remove_all(sceneDir_); }
+  static fs::path rdc() { return sceneDir_ / "captures" / "0000.rdc"; }
+  static void expectRefused(const fs::path& dir, const std::string& arguments, const std::vector<std::string>& says,
+                            const std::string& environment = "") {
+    const fs::path out = dir / "out";
+    const Command r = aoreplay(fmt::format("import renderdoc {} --out {}", arguments, out.string()), environment);
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    for (const std::string& s : says) EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out)) << r.output;
+    for (const auto& entry : fs::directory_iterator(dir)) {  // staging folders are out.tmp-PID, .out.tmp-PID
+      const std::string name = entry.path().filename().string();
+      EXPECT_FALSE(name.starts_with("out.") || name.starts_with(".out.")) << "left behind: " << entry.path();
+    }
+  }
+  static fs::path sceneDir_;
+};
+fs::path BadInput::sceneDir_;
+
+TEST_F(BadInput, TruncatedCapture) {
+  const fs::path dir = scratch("truncated");
+  const std::string whole = readBytes(rdc());
+  for (int percent : {1, 10, 40, 50, 60, 90, 99}) {  // the header, the thumbnail, the frame's chunks
+    std::ofstream(dir / "cut.rdc", std::ios::binary) << whole.substr(0, whole.size() * size_t(percent) / 100);
+    SCOPED_TRACE(fmt::format("{}% of the file", percent));
+    expectRefused(dir, fmt::format("{} {}", (dir / "cut.rdc").string(), kCamera),
+                  {"cut.rdc: frame 0: RenderDoc 1.24 cannot open it: File is corrupted"});
+  }
+}
+
+TEST_F(BadInput, NotARenderDocFile) {
+  const fs::path dir = scratch("not-rdc");
+  std::ofstream(dir / "notes.rdc") << "not a capture\n";
+  expectRefused(dir, fmt::format("{} {}", (dir / "notes.rdc").string(), kCamera),
+                {"notes.rdc: frame 0: not a RenderDoc capture"});
+}
+
+TEST_F(BadInput, MissingMemberListsTheMembers) {
+  const fs::path dir = scratch("missing-member");
+  expectRefused(dir, fmt::format("{} --view camera.world_to_view --projection camera.projection", rdc().string()),
+                {"frame 0: field \"--view\": uniform block camera (vertex shader) has no member world_to_view; its "
+                 "members: view (float4x4), projection (float4x4), tint (float4)"});
+}
+
+TEST_F(BadInput, MissingBlockListsTheBlocks) {
+  const fs::path dir = scratch("missing-block");
+  expectRefused(dir, fmt::format("{} --view Camera.view --projection camera.projection", rdc().string()),
+                {fmt::format("field \"--view\": no uniform block Camera in the shaders at event {}", kLastGBufferDraw),
+                 "the blocks there: camera [vertex shader: view (float4x4)"});
+}
+
+TEST_F(BadInput, NoDepthTargetAtTheEvent) {
+  const fs::path dir = scratch("no-depth");
+  expectRefused(dir, fmt::format("{} --event {} {}", rdc().string(), kOverlayDraw, kCamera),
+                {fmt::format("field \"--event\": no depth target at event {} (vkCmdDraw())", kOverlayDraw),
+                 fmt::format("with a depth target: {} (vkCmdDraw())", kFloorDraw)});
+}
+
+TEST_F(BadInput, CaptureFromANewerRenderDoc) {
+  const fs::path dir = scratch("newer");
+  std::string bytes = readBytes(rdc());
+  // A later RenderDoc's header: a newer file format version and its version string.
+  bytes[9] = char(bytes[9] + 1);
+  const char later[16] = "1.99";
+  std::memcpy(&bytes[16], later, sizeof later);
+  std::ofstream(dir / "later.rdc", std::ios::binary) << bytes;
+  expectRefused(dir, fmt::format("{} {}", (dir / "later.rdc").string(), kCamera),
+                {"made with RenderDoc 1.99, newer than the installed RenderDoc 1.24",
+                 "--renderdoc-python DIR of a RenderDoc 1.99 (or newer) build"});
+}
+
+TEST_F(BadInput, NoRenderDocModule) {
+  const fs::path dir = scratch("no-module");
+  fs::create_directories(dir / "empty");
+  expectRefused(dir, fmt::format("{} {} --renderdoc-python {}", rdc().string(), kCamera, (dir / "empty").string()),
+                {"field \"--renderdoc-python\": no RenderDoc Python module (renderdoc.so) in"});
+  // A Python that cannot see Debian's module (-S: no site packages) is told what to install.
+  std::ofstream(dir / "python-without-site") << "#!/bin/sh\nexec /usr/bin/python3 -S \"$@\"\n";
+  fs::permissions(dir / "python-without-site", fs::perms::owner_all);
+  expectRefused(dir, fmt::format("{} {}", rdc().string(), kCamera),
+                {"cannot import RenderDoc's Python module", "apt-get install python3-renderdoc"},
+                "AOREPLAY_PYTHON=" + (dir / "python-without-site").string());
+}
+
+TEST_F(BadInput, ProjectionThatIsNotPerspective) {
+  const fs::path dir = scratch("not-perspective");
+  expectRefused(dir, fmt::format("{} --view camera.projection --projection camera.view", rdc().string()),
+                {"field \"--projection\": camera.view is not a perspective projection: its last row is (0, 0, 0, 1)"});
+}
+
+TEST_F(BadInput, MatricesInPushConstantsOrStorageBuffersAreNotSupportedYet) {
+  const fs::path dir = scratch("push-constants");
+  expectRefused(dir, fmt::format("{} --view object.model --projection camera.projection", rdc().string()),
+                {"field \"--view\": object is a push-constant block of the vertex shader: matrices in push constants "
+                 "are not supported yet"});
+  expectRefused(dir, fmt::format("{} --view camera.view --projection extra.shadow", rdc().string()),
+                {"field \"--projection\": extra is a storage buffer of the vertex shader: matrices in storage buffers "
+                 "are not supported yet"});
+}
+
+TEST_F(BadInput, SameMemberForBothMatrices) {
+  const fs::path dir = scratch("same-member");
+  expectRefused(dir, fmt::format("{} --view camera.view --projection camera.view", rdc().string()),
+                {"depth: gbuffer.depth (id", "--view and --projection both name camera.view: a combined matrix is not "
+                 "supported", "camera [vertex shader: view (float4x4), projection (float4x4), tint (float4)]"});
+}
+
+TEST_F(BadInput, EarlierCaptureAtOutIsLeftAsItWas) {
+  const fs::path dir = scratch("keep-earlier");
+  const fs::path out = dir / "out";
+  ASSERT_EQ(aoreplay(fmt::format("import renderdoc {} --out {} {}", rdc().string(), out.string(), kCamera)).exitCode,
+            0);
+  const auto before = fs::last_write_time(out / "capture.json");
+  const Command r = aoreplay(fmt::format("import renderdoc {} --out {} --view camera.nope --projection camera.projection",
+                                         rdc().string(), out.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_EQ(fs::last_write_time(out / "capture.json"), before);
+  EXPECT_NO_THROW(loadCapture(out));
+}
+
+}  // namespace
+}  // namespace aor::rdtest

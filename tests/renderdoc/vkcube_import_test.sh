@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# vkcube (Debian's vulkan-tools) knows nothing of RenderDoc or aoreplay: capture one of its frames
+# through RenderDoc's target control under Xvfb, import it, and check that the import finds its
+# depth and refuses its matrices (one combined model-view-projection) saying what is missing.
+# Usage: vkcube_import_test.sh AOREPLAY WORK_DIR
+set -euo pipefail
+aoreplay=$1 work=$2
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAILED: $*"; cat "$work/log" 2>/dev/null; exit 1; }
+
+xvfb-run -a /usr/bin/python3 "$here/target_control_capture.py" --out "$work/vkcube.rdc" -- \
+  vkcube --c 100000 --width 320 --height 180 || fail "capturing vkcube"
+
+# The only uniform block holds MVP: naming it for both matrices is refused after the depth is found.
+set +e
+"$aoreplay" import renderdoc "$work/vkcube.rdc" --out "$work/imported" --view ubuf.MVP --projection ubuf.MVP \
+  >"$work/log" 2>&1
+status=$?
+set -e
+cat "$work/log"
+[ "$status" -eq 2 ] || fail "exit status $status, expected 2"
+grep -q "event [0-9]* vkCmdDraw(): last draw with a depth target" "$work/log" || fail "no event line"
+grep -q "depth: 2D Depth Attachment [0-9]* (id [0-9]*), D16 320x180; viewport 180x180 at (70, 0), cropped to it" \
+  "$work/log" || fail "no depth line"
+grep -q -- "--view and --projection both name ubuf.MVP: a combined matrix is not supported" "$work/log" \
+  || fail "combined matrix not named"
+grep -q "ubuf \[vertex shader: MVP (float4x4)" "$work/log" || fail "the existing block not listed"
+[ ! -e "$work/imported" ] || fail "--out was written"
+
+# Asking for separate matrices names what the block lacks.
+set +e
+"$aoreplay" import renderdoc "$work/vkcube.rdc" --out "$work/imported" --view ubuf.view --projection ubuf.projection \
+  >"$work/log" 2>&1
+status=$?
+set -e
+cat "$work/log"
+[ "$status" -eq 2 ] || fail "exit status $status, expected 2"
+grep -q "uniform block ubuf (vertex shader) has no member view; its members: MVP (float4x4)" "$work/log" \
+  || fail "missing member not named"
+[ ! -e "$work/imported" ] || fail "--out was written"
+echo "vkcube: depth found, combined matrix refused"
