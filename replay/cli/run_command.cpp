@@ -132,7 +132,8 @@ int runCommand(const RunArgs& args) {
   fmt::print("{}", passTable(result));
   for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
   HostOverhead overhead = hostOverhead(result);
-  fmt::print("set-up: {:.1f} ms (pipelines; the first frame's decode overlaps it)\n", result.setupMs);
+  fmt::print("set-up: {:.1f} ms (pipelines{})\n", result.setupMs,
+             result.timingMode == TimingMode::Overlapped ? "; the first frame's decode overlaps it" : "");
   fmt::print("wall: {:.1f} ms for {} frame(s), {:.1f} frames/s; host overhead {:.1f} ms ({:.1f} % of wall); timing {}{}\n",
              result.wallMs, result.frames.size(), report["replay_fps"].get<double>(), overhead.ms,
              100.0 * overhead.fractionOfWall, timingModeName(result.timingMode),

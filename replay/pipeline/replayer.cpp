@@ -317,7 +317,7 @@ class Replay {
     if (result_.timingMode == TimingMode::Isolated) {
       chunkFrames_ = framesPerChunk(dry);
       slots = std::min(chunkFrames_, end_ - begin_);
-      result_.chunkFrames = chunkFrames_;
+      result_.chunkFrames = std::min(chunkFrames_, end_ - begin_);
     }
     staging_ = std::make_unique<StagingBuffers>(vk_, capture_, layout_.depth2, outputTexelBytes_, std::max(slots, 1));
     if (result_.timingMode == TimingMode::Isolated)

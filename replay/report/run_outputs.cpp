@@ -151,8 +151,10 @@ nlohmann::json buildTrace(const ReplayResult& result) {
   };
   track(kGpuTrack, "GPU passes");
   track(kHostTrack, "Host: replay thread");
-  track(kWorkerTrack, "Host: decode worker");
-  track(kSinkTrack, "Host: sink worker");
+  // Isolated timing runs decode and sink on the replay thread, around each chunk's GPU work.
+  bool isolated = result.timingMode == TimingMode::Isolated;
+  track(kWorkerTrack, isolated ? "Host: preload (replay thread, before the chunk's GPU work)" : "Host: decode worker");
+  track(kSinkTrack, isolated ? "Host: sink (replay thread, after the chunk's GPU work)" : "Host: sink worker");
   auto slice = [&](const std::string& name, int track, double startMs, double durMs, nlohmann::json args) {
     events.push_back({{"name", name}, {"ph", "X"}, {"pid", kPid}, {"tid", track}, {"ts", startMs * 1000.0},
                       {"dur", durMs * 1000.0}, {"args", std::move(args)}});
