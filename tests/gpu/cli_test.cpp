@@ -103,8 +103,9 @@ TEST_F(Cli, ReportBreaksDownHostTimeAndDecodesAheadOfTheGpu) {
   // 30 untimed executions per frame make frame 0's GPU window some milliseconds long at 64x36, so
   // frame 1's decode, started on a worker as frame 0 is submitted, starts inside it even when the
   // worker thread takes a while to start on a loaded machine. (Pipeline compilation used to make
-  // that window long; it now happens in the set-up.)
-  auto r = runAoreplay(fmt::format("run {} --out {} --no-images --warmup 30", capture().string(), out.string()));
+  // that window long; it now happens in the set-up.) Overlapped timing: isolated timing, lavapipe's
+  // default, decodes before and writes after the GPU work (timing_mode_test.cpp).
+  auto r = runAoreplay(fmt::format("run {} --out {} --no-images --warmup 30 --overlap", capture().string(), out.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   auto report = readJson(out / "report.json");
   double gpu = 0;
