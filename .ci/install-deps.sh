@@ -7,6 +7,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpng-dev
+  libsimdjson-dev  # bounded, linear-time JSON input (replay/capture/json_input.h)
+  libre2-dev       # linear-time regular expressions for --ignore
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz

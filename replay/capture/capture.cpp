@@ -1,5 +1,6 @@
 #include "capture/capture.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,8 +10,12 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <atomic>
+#include <exception>
+#include <map>
 #include <set>
-#include <sstream>
+#include <thread>
+#include <unordered_map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -19,6 +24,8 @@
 
 #include "capture/exr_detail.h"
 #include "capture/image_io.h"
+#include "capture/json_input.h"
+#include "report/output_directory.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -32,6 +39,7 @@ using detail::kMaxImagePixels;
 using detail::kMaxImageSide;
 
 constexpr const char* kFormatName = "aoreplay-capture";
+
 constexpr int kFormatVersion = 1;
 
 const std::vector<std::string> kTopLevelFields = {"format", "version", "width", "height", "frames", "scene"};
@@ -63,20 +71,14 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::string quoteJson(const std::string& s) {
-  return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
-}
+std::string quoteJson(const std::string& s) { return quoteForMessage(s); }
 
 // Short description of a JSON value for "expected X, got Y" messages.
 std::string describe(const json& v) {
   switch (v.type()) {
     case json::value_t::null: return "null";
     case json::value_t::boolean: return v.get<bool>() ? "true" : "false";
-    case json::value_t::string: {
-      std::string s = v.get<std::string>();
-      if (s.size() > 40) s = s.substr(0, 37) + "...";
-      return "string " + quoteJson(s);
-    }
+    case json::value_t::string: return "string " + quoteForMessage(v.get_ref<const std::string&>(), 40);
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
     case json::value_t::number_float: return "number " + v.dump();
@@ -109,6 +111,9 @@ void checkKnownFields(const json& obj, const std::vector<std::string>& known, co
     std::string best;
     size_t bestDistance = 3;
     for (const auto& k : known) {
+      // The distance is at least the difference in length: a long key is not compared letter by letter.
+      const size_t lengthGap = key.size() > k.size() ? key.size() - k.size() : k.size() - key.size();
+      if (lengthGap >= bestDistance) continue;
       const size_t d = lower(k) == lower(key) ? 0 : editDistance(key, k);
       if (d < bestDistance) {
         bestDistance = d;
@@ -139,6 +144,28 @@ std::int64_t positiveInt(const json& obj, const char* key, const Where& w) {
   return v;
 }
 
+// `d` as the 32-bit float it is used as, when that float is finite and zero only if `d` is: 1e39
+// would become infinity, 1e-300 zero.
+std::optional<float> asFloat(double d) {
+  const float f = static_cast<float>(d);
+  if (!std::isfinite(d) || !std::isfinite(f) || (f == 0.0f && d != 0.0)) return std::nullopt;
+  return f;
+}
+
+// scene.ao_radius becomes the default `radius` setting (a float): it must be one the setting accepts.
+void checkAoRadius(const json& scene, const Where& w) {
+  auto it = scene.find("ao_radius");
+  if (it == scene.end()) return;
+  const char* field = "scene.ao_radius";
+  if (!it->is_number()) fail(w, field, "expected a number (world units), got " + describe(*it));
+  const double d = it->get<double>();
+  const auto f = asFloat(d);
+  if (!f) fail(w, field, fmt::format("{} is not representable as a 32-bit float", it->dump()));
+  if (!(d >= kMinAoRadius && d <= kMaxAoRadius))
+    fail(w, field, fmt::format("{} is outside {:g}..{:g}, the range of the radius setting", it->dump(), kMinAoRadius,
+                               kMaxAoRadius));
+}
+
 glm::mat4 parseMatrix(const json& frame, const char* key, const Where& w) {
   auto it = frame.find(key);
   if (it == frame.end()) fail(w, key, "missing; expected 16 numbers (a 4x4 matrix, column-major)");
@@ -150,9 +177,12 @@ glm::mat4 parseMatrix(const json& frame, const char* key, const Where& w) {
     if (!e.is_number()) fail(w, key, fmt::format("element {} is not a number: got {}", i, describe(e)));
     const double d = e.get<double>();
     if (!std::isfinite(d)) fail(w, key, fmt::format("element {} is not finite", i));
-    const float f = static_cast<float>(d);
-    if (!std::isfinite(f)) fail(w, key, fmt::format("element {} ({}) is not finite as a 32-bit float", i, e.dump()));
-    m[i / 4][i % 4] = f;
+    const auto f = asFloat(d);
+    if (!f)
+      fail(w, key,
+           fmt::format("element {} ({}) is not {} as a 32-bit float", i, e.dump(),
+                       std::isfinite(static_cast<float>(d)) ? "representable (it would become 0)" : "finite"));
+    m[i / 4][i % 4] = *f;
   }
   return m;
 }
@@ -225,18 +255,24 @@ struct FrameEntry {
 };
 
 // Filesystem checks of a path that passed relativePath: it must not resolve outside the folder
-// (symbolic links) and must be an existing file. Returns the absolute path.
+// (symbolic links) and must be an existing file. Returns the absolute path. `parentCanonical`, when given, is the canonical form of the file's
+// folder: then one lstat tells whether the file itself is a link, instead of a readlink for
+// every component of the path, for each of up to 2*10^5 files.
 fs::path resolveInFolder(const fs::path& folderAbs, const fs::path& folderCanonical, const fs::path& rel,
-                         const std::string& text, const std::string& display, const char* key, const Where& w) {
+                         const std::string& text, const std::string& display, const char* key, const Where& w,
+                         const std::optional<fs::path>& parentCanonical = std::nullopt) {
   const fs::path abs = folderAbs / rel;
   std::error_code ec;
-  const fs::path canon = fs::weakly_canonical(abs, ec);
+  struct stat link {};
+  const bool plainFile = parentCanonical && ::lstat(abs.c_str(), &link) == 0 && !S_ISLNK(link.st_mode);
+  const fs::path canon = plainFile ? *parentCanonical / rel.filename() : fs::weakly_canonical(abs, ec);
   if (ec) fail(w, key, fmt::format("cannot resolve {}: {}", quoteJson(text), ec.message()));
   const fs::path inside = canon.lexically_relative(folderCanonical);
   if (inside.empty() || inside == "." || *inside.begin() == "..")
     fail(w, key,
          fmt::format("{} resolves to {}, outside the capture folder (through a symbolic link)", quoteJson(text),
                      canon.string()));
+  if (plainFile && S_ISREG(link.st_mode)) return abs;  // what lstat said, for a file that is no link
   const auto st = fs::status(abs, ec);
   if (ec || !fs::exists(st)) fail(w, key, fmt::format("file {} does not exist (looked for {})", quoteJson(text), display));
   if (!fs::is_regular_file(st)) fail(w, key, fmt::format("{} is not a file ({})", quoteJson(text), display));
@@ -311,63 +347,64 @@ void checkReferenceHeader(const ExrHeaderDetail& h, int width, int height, const
   checkMisspelledChannels(h, {"visibility"}, {"visib"}, w);
 }
 
-json parseCaptureJson(const std::string& text, const Where& w) {
-  // nlohmann keeps the last of duplicate keys silently; a parser callback catches them.
-  std::vector<std::set<std::string>> open;
-  std::optional<std::string> duplicate;
-  const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) {
-      open.emplace_back();
-    } else if (event == json::parse_event_t::object_end) {
-      if (!open.empty()) open.pop_back();
-    } else if (event == json::parse_event_t::key && !open.empty() && parsed.is_string()) {
-      if (!open.back().insert(parsed.get<std::string>()).second && !duplicate) duplicate = parsed.get<std::string>();
-    }
-    return true;
-  };
-  json root;
-  try {
-    root = json::parse(text, callback);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] " tag, keep "parse error at line L, column C: ...".
-    if (!what.empty() && what.front() == '[') {
-      const auto close = what.find("] ");
-      if (close != std::string::npos) what = what.substr(close + 2);
-    }
-    // A number too large for a double (1e999) is reported without a position; find the token.
-    if (e.id == 406) {
-      const auto q1 = what.find('\'');
-      const auto q2 = what.rfind('\'');
-      if (q1 != std::string::npos && q2 > q1 + 1) {
-        const auto at = text.find(what.substr(q1 + 1, q2 - q1 - 1));
-        if (at != std::string::npos) {
-          const auto lineStart = text.rfind('\n', at);
-          const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + at, '\n'));
-          const size_t column = at - (lineStart == std::string::npos ? 0 : lineStart + 1) + 1;
-          what = fmt::format("at line {}, column {}: {} (numbers must be finite)", line, column, what);
-        }
-      }
-    }
-    fail(w, "", "malformed JSON: " + what);
-  }
-  if (duplicate) fail(w, *duplicate, "appears twice in the same object");
-  return root;
-}
-
-std::string readTextFile(const fs::path& path, const Where& w) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(w, "", "cannot open: " + std::string(std::strerror(errno)));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) fail(w, "", "cannot read: " + std::string(std::strerror(errno)));
-  return ss.str();
-}
-
 fs::path absoluteFolder(const fs::path& folder) {
   fs::path p = fs::absolute(folder).lexically_normal();
   if (!p.has_filename() && p.has_relative_path()) p = p.parent_path();  // trailing slash
   return p;
+}
+
+// One distinct file a capture names: resolved and its header checked (runFileChecks), the outcome
+// kept for every frame that names it.
+struct FileCheck {
+  fs::path relative;
+  std::string text;     // as written in capture.json
+  std::string display;  // as messages show it
+  bool reference = false;
+  int firstFrame = 0;   // messages name the first frame that uses the file
+  std::optional<fs::path> parentCanonical;  // of the file's folder, when it resolves
+  fs::path absolute;
+  Layout layout;
+  std::exception_ptr error;
+};
+
+void runFileCheck(FileCheck& c, const Capture& capture, const fs::path& folderCanonical, const std::string& jsonFile) {
+  try {
+    const char* key = c.reference ? "reference" : "gbuffer";
+    c.absolute = resolveInFolder(capture.folder, folderCanonical, c.relative, c.text, c.display, key,
+                                 Where{jsonFile, c.firstFrame}, c.parentCanonical);
+    const Where w{c.display, c.firstFrame};
+    const auto header = detail::readExrHeaderDetail(c.absolute, c.display, c.firstFrame);
+    if (c.reference)
+      checkReferenceHeader(header, capture.width, capture.height, w);
+    else
+      c.layout = checkGBufferHeader(header, capture.width, capture.height, w);
+  } catch (...) {
+    c.error = std::current_exception();
+  }
+}
+
+// A capture of 10^5 frames names up to 2*10^5 files: they are checked on up to 8 threads.
+void runFileChecks(std::vector<FileCheck>& checks, const Capture& capture, const fs::path& folderCanonical,
+                   const std::string& jsonFile) {
+  std::map<fs::path, std::optional<fs::path>> parents;  // a capture's files lie in a few folders
+  for (auto& c : checks) {
+    auto [it, added] = parents.try_emplace(c.relative.parent_path());
+    if (added) {
+      std::error_code ec;
+      fs::path canonical = fs::canonical(capture.folder / it->first, ec);
+      if (!ec) it->second = std::move(canonical);
+    }
+    c.parentCanonical = it->second;
+  }
+  const size_t threads = std::min<size_t>({8, std::max(1u, std::thread::hardware_concurrency()), 1 + checks.size() / 256});
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t i = next++; i < checks.size(); i = next++) runFileCheck(checks[i], capture, folderCanonical, jsonFile);
+  };
+  std::vector<std::thread> helpers;
+  for (size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+  work();
+  for (auto& h : helpers) h.join();
 }
 
 }  // namespace
@@ -392,7 +429,7 @@ Capture loadCapture(const fs::path& folder) {
     if (ec || !fs::exists(st)) fail(top, "", "file does not exist; a capture folder must contain capture.json");
     if (!fs::is_regular_file(st)) fail(top, "", "is not a regular file");
   }
-  const json root = parseCaptureJson(readTextFile(jsonPath, top), top);
+  const json root = readBoundedJson(jsonPath, kCaptureJsonLimits, top.file);
   if (!root.is_object()) fail(top, "", "the top level must be a JSON object, got " + describe(root));
 
   // format and version first: a file of another format or version gets that message, not a
@@ -431,6 +468,7 @@ Capture loadCapture(const fs::path& folder) {
 
   if (auto scene = root.find("scene"); scene != root.end()) {
     if (!scene->is_object()) fail(top, "scene", "expected an object, got " + describe(*scene));
+    checkAoRadius(*scene, top);
     capture.scene = *scene;
   }
 
@@ -438,11 +476,13 @@ Capture loadCapture(const fs::path& folder) {
   if (framesIt == root.end()) fail(top, "frames", "missing; expected an array of frame objects");
   if (!framesIt->is_array()) fail(top, "frames", "expected an array of frame objects, got " + describe(*framesIt));
   if (framesIt->empty()) fail(top, "frames", "the array is empty; a capture needs at least one frame");
-  if (framesIt->size() > static_cast<size_t>(std::numeric_limits<int>::max()))
-    fail(top, "frames", "too many frames");
+  if (framesIt->size() > size_t(kMaxCaptureFrames))  // the parser refuses longer arrays already
+    fail(top, "frames", fmt::format("more than {} frames, the limit", kMaxCaptureFrames));
 
   // Pass 1: everything in capture.json, so typos are reported before any EXR is opened.
   std::vector<FrameEntry> entries;
+  entries.reserve(framesIt->size());
+  capture.frames.reserve(framesIt->size());
   for (size_t i = 0; i < framesIt->size(); ++i) {
     const json& f = (*framesIt)[i];
     const Where w{top.file, static_cast<int>(i)};
@@ -471,23 +511,39 @@ Capture loadCapture(const fs::path& folder) {
   }
 
   // Pass 2: files. Paths stay inside the folder, every EXR header is checked, and the channel
-  // layout of frame 0 must hold for every frame.
+  // layout of frame 0 must hold for every frame. Each distinct path is resolved and checked once,
+  // however many frames name it, on a few threads; errors are then reported in frame order, as
+  // a check frame by frame would find them.
   std::error_code ec;
   const fs::path folderCanonical = fs::canonical(capture.folder, ec);
   if (ec) throw InputError(folderDisplay, std::nullopt, "", "cannot resolve the capture folder: " + ec.message());
+  std::vector<FileCheck> checks;
+  std::unordered_map<std::string, size_t> checkOf[2];  // [reference?] relative path -> index in checks
+  std::vector<std::pair<size_t, std::optional<size_t>>> frameChecks;  // per frame: G-buffer, reference
+  frameChecks.reserve(entries.size());
+  const auto checkFor = [&](const fs::path& rel, const std::string& text, bool reference, int frame) {
+    auto [it, added] = checkOf[reference].try_emplace(rel.generic_string(), checks.size());
+    if (added) checks.push_back({rel, text, (folder / rel).lexically_normal().string(), reference, frame});
+    return it->second;
+  };
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const FrameEntry& entry = entries[i];
+    const size_t g = checkFor(entry.gbuffer, entry.gbufferText, false, int(i));
+    std::optional<size_t> r;
+    if (entry.reference) r = checkFor(*entry.reference, entry.referenceText, true, int(i));
+    frameChecks.emplace_back(g, r);
+  }
+  runFileChecks(checks, capture, folderCanonical, top.file);
+
   Layout first;
   for (size_t i = 0; i < entries.size(); ++i) {
     const int index = static_cast<int>(i);
-    const Where w{top.file, index};
     CaptureFrame& frame = capture.frames[i];
-    const FrameEntry& entry = entries[i];
-
-    const std::string gDisplay = (folder / entry.gbuffer).lexically_normal().string();
-    frame.gbuffer =
-        resolveInFolder(capture.folder, folderCanonical, entry.gbuffer, entry.gbufferText, gDisplay, "gbuffer", w);
-    const Where gw{gDisplay, index};
-    const Layout layout = checkGBufferHeader(detail::readExrHeaderDetail(frame.gbuffer, gDisplay, index),
-                                             capture.width, capture.height, gw);
+    const FileCheck& g = checks[frameChecks[i].first];
+    if (g.error) std::rethrow_exception(g.error);
+    frame.gbuffer = g.absolute;
+    const Layout layout = g.layout;
+    const Where gw{g.display, index};
     if (i == 0) {
       first = layout;
     } else {
@@ -502,13 +558,10 @@ Capture loadCapture(const fs::path& folder) {
                          layout.depth2 ? "has a depth2 channel but frame 0 has none"
                                        : "has no depth2 channel but frame 0 has one"));
     }
-
-    if (entry.reference) {
-      const std::string rDisplay = (folder / *entry.reference).lexically_normal().string();
-      frame.reference = resolveInFolder(capture.folder, folderCanonical, *entry.reference, entry.referenceText,
-                                        rDisplay, "reference", w);
-      checkReferenceHeader(detail::readExrHeaderDetail(*frame.reference, rDisplay, index), capture.width,
-                           capture.height, Where{rDisplay, index});
+    if (frameChecks[i].second) {
+      const FileCheck& r = checks[*frameChecks[i].second];
+      if (r.error) std::rethrow_exception(r.error);
+      frame.reference = r.absolute;
     }
   }
   capture.hasNormals = first.normals;
@@ -524,6 +577,17 @@ const CaptureFrame& frameAt(const Capture& capture, int frame, const char* funct
   return capture.frames[static_cast<size_t>(frame)];
 }
 }  // namespace
+
+std::vector<fs::path> captureFiles(const Capture& capture) {
+  std::set<fs::path> files;
+  for (const auto& f : capture.frames) {
+    files.insert(f.gbuffer);
+    if (f.reference) files.insert(*f.reference);
+  }
+  std::vector<fs::path> list = {capture.folder / "capture.json"};
+  list.insert(list.end(), files.begin(), files.end());
+  return list;
+}
 
 GBuffer loadGBuffer(const Capture& capture, int frame) {
   const CaptureFrame& f = frameAt(capture, frame, "loadGBuffer");
@@ -623,24 +687,19 @@ void writeCapture(const fs::path& folder, int width, int height, const std::vect
   if (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
   if (target.empty() || target == "." || target == ".." || !target.has_filename())
     throw std::invalid_argument("writeCapture: invalid folder " + folder.string());
-  const std::string display = target.string();
+  // The rules of every output folder (report/output_directory.h): only an earlier capture is
+  // replaced, one writer at a time, and the folder is the old capture or the new one at any moment.
+  OutputDirectory out(target, ResultKind::Capture);
+  writeCaptureFiles(out.staging(), width, height, frames, scene);
+  out.commit();
+}
 
-  std::error_code ec;
-  const auto st = fs::symlink_status(target, ec);
-  if (fs::exists(st)) {
-    if (!fs::is_directory(st)) throw InputError(display, std::nullopt, "", "exists and is not a folder; not replacing it");
-    // Replacing means deleting: only ever delete an earlier capture (or an empty folder).
-    if (!fs::exists(target / "capture.json") && !fs::is_empty(target, ec))
-      throw InputError(display, std::nullopt, "", "exists, is not empty and holds no capture.json; not replacing it");
-  }
-  if (target.has_parent_path()) {
-    fs::create_directories(target.parent_path(), ec);
-    if (ec) throw InputError(display, std::nullopt, "", "cannot create the parent folder: " + ec.message());
-  }
-  fs::path tmp = target;
-  tmp += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
-  fs::remove_all(tmp, ec);
-  try {
+void writeCaptureFiles(const fs::path& folder, int width, int height, const std::vector<CaptureFrameData>& frames,
+                       const json& scene) {
+  validateForWrite(width, height, frames, scene);
+  const fs::path& tmp = folder;
+  {
+    std::error_code ec;
     fs::create_directories(tmp / "frames", ec);
     if (ec) throw InputError(tmp.string(), std::nullopt, "", "cannot create folder: " + ec.message());
 
@@ -687,17 +746,6 @@ void writeCapture(const fs::path& folder, int width, int height, const std::vect
     // nlohmann::json objects are sorted by key, so this is deterministic too.
     doc["scene"] = nlohmann::ordered_json::parse(scene.is_null() ? std::string("{}") : scene.dump());
     writeTextFile(tmp / "capture.json", doc.dump(2) + "\n");
-
-    if (fs::exists(fs::symlink_status(target, ec))) {
-      fs::remove_all(target, ec);
-      if (ec) throw InputError(display, std::nullopt, "", "cannot remove the previous capture: " + ec.message());
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) throw InputError(display, std::nullopt, "", "cannot move the new capture into place: " + ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(tmp, ignored);
-    throw;
   }
 }
 

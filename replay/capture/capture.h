@@ -11,8 +11,19 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/input_error.h"
+#include "capture/json_input.h"
 
 namespace aor {
+
+// The most frames a capture may have (captures/FORMAT.md).
+inline constexpr int kMaxCaptureFrames = 100'000;
+// capture.json holds at most kMaxCaptureFrames frames (and no array longer than that) in at most
+// 256 MiB: a capture of 10^5 frames as writeCapture writes it is about 100 MB.
+inline constexpr JsonLimits kCaptureJsonLimits{std::uint64_t(256) << 20, kMaxCaptureFrames, 128};
+// scene.ao_radius must lie in the range of the `radius` setting it becomes (techniques/parameters.cpp;
+// tests/pipeline checks that the two agree).
+inline constexpr double kMinAoRadius = 1e-6;
+inline constexpr double kMaxAoRadius = 1e7;
 
 struct CaptureFrame {
   std::filesystem::path gbuffer;                  // absolute, inside the capture folder
@@ -44,12 +55,16 @@ struct GBuffer {
   std::vector<float> depth2;   // width*height; empty without a second layer
 };
 
+// The files a replay of `capture` reads: capture.json and each distinct EXR (outputs must not overwrite them).
+std::vector<std::filesystem::path> captureFiles(const Capture& capture);
+
 GBuffer loadGBuffer(const Capture& capture, int frame);
 // Reference visibility (width*height, in [0,1]); std::nullopt when the frame has none.
 std::optional<std::vector<float>> loadReference(const Capture& capture, int frame);
 
-// Writing, used by the generator. Files go to a temporary folder that is renamed into place by
-// the caller-visible function only when everything was written.
+// Writing, used by the generator. writeCapture replaces `folder` by the rules of every output
+// folder (report/output_directory.h): files go to a staging folder swapped in only when
+// everything was written, and only an earlier capture is ever replaced.
 struct CaptureFrameData {
   GBuffer gbuffer;
   std::optional<std::vector<float>> reference;
@@ -59,5 +74,8 @@ struct CaptureFrameData {
 };
 void writeCapture(const std::filesystem::path& folder, int width, int height,
                   const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene);
+// The files alone, into `folder` (empty or new; e.g. an OutputDirectory's staging folder).
+void writeCaptureFiles(const std::filesystem::path& folder, int width, int height,
+                       const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene);
 
 }  // namespace aor

@@ -1,5 +1,9 @@
 #include "capture/image_io.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -26,6 +30,7 @@
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfVersion.h>
+#include <OpenEXR/Iex.h>
 #include <fmt/format.h>
 #include <png.h>
 
@@ -114,36 +119,123 @@ int linesPerChunk(int compression) {
   }
 }
 
-template <typename T>
-bool readLE(std::istream& in, T& value) {
-  unsigned char bytes[sizeof(T)];
-  if (!in.read(reinterpret_cast<char*>(bytes), sizeof(T))) return false;
-  std::make_unsigned_t<T> v = 0;
-  for (size_t i = 0; i < sizeof(T); ++i) v |= static_cast<std::make_unsigned_t<T>>(bytes[i]) << (8 * i);
-  value = static_cast<T>(v);
-  return true;
+// Reads a file at given offsets with pread: the first kHeadBytes (header and, usually, the line offset
+// table) once, the rest a few bytes at a time. Seeking an ifstream re-reads its whole buffer at
+// every seek, which made checking a capture of 10^5 frames take half a minute.
+class OffsetReader {
+ public:
+  static constexpr size_t kHeadBytes = size_t(1) << 13;
+  // O_NONBLOCK: opening a FIFO does not wait for a writer (it is then refused).
+  explicit OffsetReader(const fs::path& path) : fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)) {
+    if (fd_ < 0) return;
+    struct stat st {};
+    if (::fstat(fd_, &st) != 0) return;
+    size_ = std::uintmax_t(st.st_size);
+    regular_ = S_ISREG(st.st_mode);
+    if (!regular_) return;  // a FIFO or device is not read
+    head_.resize(kHeadBytes);
+    const ssize_t n = ::pread(fd_, head_.data(), head_.size(), 0);
+    head_.resize(n > 0 ? size_t(n) : 0);
+  }
+  ~OffsetReader() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  OffsetReader(const OffsetReader&) = delete;
+  OffsetReader& operator=(const OffsetReader&) = delete;
+  bool ok() const { return fd_ >= 0; }
+  const std::vector<char>& head() const { return head_; }
+  std::uintmax_t size() const { return size_; }
+  bool isRegularFile() const { return regular_; }
+
+  bool read(std::uint64_t offset, void* out, size_t n) const {
+    if (offset + n <= head_.size()) {
+      std::memcpy(out, head_.data() + offset, n);
+      return true;
+    }
+    return ::pread(fd_, out, n, off_t(offset)) == ssize_t(n);
+  }
+  template <typename T>
+  bool readLE(std::uint64_t& offset, T& value) const {
+    unsigned char bytes[sizeof(T)];
+    if (!read(offset, bytes, sizeof(T))) return false;
+    offset += sizeof(T);
+    std::make_unsigned_t<T> v = 0;
+    for (size_t i = 0; i < sizeof(T); ++i) v |= static_cast<std::make_unsigned_t<T>>(bytes[i]) << (8 * i);
+    value = static_cast<T>(v);
+    return true;
+  }
+
+ private:
+  int fd_;
+  std::uintmax_t size_ = 0;
+  bool regular_ = false;
+  std::vector<char> head_;
+};
+
+// An Imf::IStream over the first bytes of a file (OffsetReader::head): the header is parsed from
+// memory. Reading past them throws, as reading past the end of a file does.
+class HeadStream : public Imf::IStream {
+ public:
+  HeadStream(const std::vector<char>& bytes, const char* name) : Imf::IStream(name), bytes_(bytes) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || pos_ + std::uint64_t(n) > bytes_.size()) throw Iex::InputExc("Early end of file.");
+    std::memcpy(c, bytes_.data() + pos_, size_t(n));
+    pos_ += std::uint64_t(n);
+    return pos_ < bytes_.size();
+  }
+  std::uint64_t tellg() override { return pos_; }
+  void seekg(std::uint64_t pos) override { pos_ = pos; }
+  void clear() override {}
+
+ private:
+  const std::vector<char>& bytes_;
+  std::uint64_t pos_ = 0;
+};
+
+// Whether the header's attribute list ends inside `head` (names, types and sizes walked, values
+// skipped): only then is it parsed from memory, with no attribute size larger than those bytes.
+bool headerEndsWithin(const std::vector<char>& head, int version) {
+  const size_t maxName = (version & Imf::LONG_NAMES_FLAG) ? 256 : 32;
+  size_t at = 8;
+  const auto skipName = [&](bool& empty) {
+    const size_t start = at;
+    while (at < head.size() && head[at] != '\0' && at - start <= maxName) ++at;
+    if (at >= head.size() || head[at] != '\0') return false;
+    empty = at == start;
+    ++at;
+    return true;
+  };
+  for (;;) {
+    bool empty = false, emptyType = false;
+    if (!skipName(empty)) return false;
+    if (empty) return true;
+    if (!skipName(emptyType) || at + 4 > head.size()) return false;
+    std::int32_t size = 0;
+    std::memcpy(&size, head.data() + at, 4);
+    at += 4;
+    if (size < 0 || std::uint64_t(size) > head.size() - at) return false;
+    at += size_t(size);
+  }
 }
 
 // For single-part scan-line files (what writeCapture and most exporters produce): walks the header
 // to find the line offset table and checks that every chunk it lists lies inside the file. Returns
 // a problem description, or an empty string when the file is fine or of another kind (tiled,
 // multi-part, deep files are checked when their pixels are read).
-std::string checkScanlineChunks(const fs::path& path, int version, int compression, int dataHeight) {
+std::string checkScanlineChunks(const OffsetReader& in, std::uintmax_t fileSize, int version, int compression,
+                                int dataHeight) {
   if (Imf::isTiled(version) || Imf::isMultiPart(version) || Imf::isNonImage(version)) return {};
   const int lines = linesPerChunk(compression);
   if (lines == 0 || dataHeight <= 0) return {};
-  std::error_code ec;
-  const std::uintmax_t fileSize = fs::file_size(path, ec);
-  if (ec) return "cannot determine the file size";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "cannot open: " + errnoText();
+  std::uint64_t at = 0;
   std::int32_t magic = 0, ver = 0;
-  if (!readLE(in, magic) || !readLE(in, ver)) return "file is truncated inside the header";
+  if (!in.readLE(at, magic) || !in.readLE(at, ver)) return "file is truncated inside the header";
   const size_t maxName = (ver & Imf::LONG_NAMES_FLAG) ? 256 : 32;
   auto readName = [&](std::string& out) {
     out.clear();
     char c;
-    while (in.get(c)) {
+    while (in.read(at, &c, 1)) {
+      ++at;
       if (c == '\0') return true;
       out.push_back(c);
       if (out.size() > maxName) return false;
@@ -156,31 +248,30 @@ std::string checkScanlineChunks(const fs::path& path, int version, int compressi
     if (!readName(name)) return "file is truncated or corrupt inside the header";
     if (name.empty()) break;
     std::int32_t size = 0;
-    if (!readName(type) || !readLE(in, size) || size < 0) return "file is truncated or corrupt inside the header";
-    const auto pos = static_cast<std::uintmax_t>(in.tellg());
-    if (pos + static_cast<std::uintmax_t>(size) > fileSize) return "file is truncated inside the header";
-    in.seekg(size, std::ios::cur);
+    if (!readName(type) || !in.readLE(at, size) || size < 0) return "file is truncated or corrupt inside the header";
+    if (at + static_cast<std::uintmax_t>(size) > fileSize) return "file is truncated inside the header";
+    at += std::uint64_t(size);
   }
   const std::uint64_t chunks = (static_cast<std::uint64_t>(dataHeight) + lines - 1) / lines;
-  const auto tableStart = static_cast<std::uintmax_t>(in.tellg());
+  const std::uintmax_t tableStart = at;
   const std::uintmax_t tableEnd = tableStart + chunks * 8;
   if (tableEnd > fileSize)
     return fmt::format("file is truncated: it ends ({} bytes) inside the table of {} pixel data chunks", fileSize,
                        chunks);
   std::vector<std::uint64_t> offsets(chunks);
   for (auto& o : offsets) {
-    if (!readLE(in, o)) return "file is truncated inside the line offset table";
+    if (!in.readLE(at, o)) return "file is truncated inside the line offset table";
   }
   for (std::uint64_t i = 0; i < chunks; ++i) {
-    const std::uint64_t o = offsets[i];
+    std::uint64_t o = offsets[i];
     if (o < tableEnd || o > fileSize || fileSize - o < 8)
       return fmt::format("file is truncated or incomplete: pixel data chunk {} of {} is missing (file has {} bytes)",
                          i, chunks, fileSize);
-    in.seekg(static_cast<std::streamoff>(o));
+    const std::uint64_t chunkStart = o;
     std::int32_t y = 0, packed = 0;
-    if (!readLE(in, y) || !readLE(in, packed) || packed < 0)
+    if (!in.readLE(o, y) || !in.readLE(o, packed) || packed < 0)
       return fmt::format("pixel data chunk {} of {} is corrupt", i, chunks);
-    if (static_cast<std::uintmax_t>(packed) > fileSize - o - 8)
+    if (static_cast<std::uintmax_t>(packed) > fileSize - chunkStart - 8)
       return fmt::format("file is truncated: pixel data chunk {} of {} ends past the end of the file ({} bytes)", i,
                          chunks, fileSize);
   }
@@ -227,20 +318,51 @@ namespace detail {
 
 ExrHeaderDetail readExrHeaderDetail(const fs::path& path, const std::string& display, std::optional<int> frame) {
   configureOpenExr();
-  checkIsFile(path, display, frame);
+  const OffsetReader reader(path);
+  if (!reader.ok() || !reader.isRegularFile()) {
+    const std::string why = reader.ok() ? std::string("not a regular file") : errnoText();
+    checkIsFile(path, display, frame);  // the message for what it is instead
+    throw InputError(display, frame, "", "cannot open: " + why);
+  }
+  const std::uintmax_t fileSize = reader.size();
   ExrHeaderDetail info;
   int version = 0, compression = 0;
   try {
-    Imf::InputFile file(path.c_str());
-    info = describeHeader(file.header(), display, frame);
-    version = file.version();
-    compression = static_cast<int>(file.header().compression());
+    // The header alone, parsed from the file's first bytes: opening an Imf::InputFile would also
+    // set up its decoding, for every one of up to 2*10^5 files of a capture. Multi-part and deep
+    // files, and headers that do not end within those bytes, still go through Imf::InputFile.
+    const auto& head = reader.head();
+    std::int32_t magic = 0;
+    if (head.size() >= 8) {
+      std::memcpy(&magic, head.data(), 4);
+      std::memcpy(&version, head.data() + 4, 4);
+    }
+    const bool simple = head.size() >= 8 && magic == Imf::MAGIC && Imf::getVersion(version) == Imf::EXR_VERSION &&
+                        Imf::supportsFlags(Imf::getFlags(version)) && !Imf::isMultiPart(version) &&
+                        !Imf::isNonImage(version) && headerEndsWithin(head, version);
+    std::optional<Imf::Header> header;
+    if (simple) {
+      HeadStream stream(head, display.c_str());
+      stream.seekg(8);
+      header.emplace();
+      header->readFrom(stream, version);
+      header->sanityCheck(Imf::isTiled(version));
+    }
+    if (header) {
+      info = describeHeader(*header, display, frame);
+      compression = static_cast<int>(header->compression());
+    } else {
+      Imf::InputFile file(path.c_str());
+      info = describeHeader(file.header(), display, frame);
+      version = file.version();
+      compression = static_cast<int>(file.header().compression());
+    }
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
     throw InputError(display, frame, "", "not a readable OpenEXR file: " + exceptionText(e));
   }
-  const std::string problem = checkScanlineChunks(path, version, compression, info.height);
+  const std::string problem = checkScanlineChunks(reader, fileSize, version, compression, info.height);
   if (!problem.empty()) throw InputError(display, frame, "", problem);
   return info;
 }

@@ -23,6 +23,18 @@ bool endsWithExr(const std::string& file) {
   return ext == ".exr";
 }
 
+// At most `limit` bytes of `text` (cut at a character boundary), then "... (N bytes)": a field
+// name or problem taken from a file is never echoed whole (a key can be 200 MB long).
+std::string shortened(const std::string& text, size_t limit) {
+  if (text.size() <= limit) return text;
+  size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+constexpr size_t kMaxFieldBytes = 100;
+constexpr size_t kMaxProblemBytes = 1000;
+
 // "<file>: frame <N>: <label> "<field>": <problem>", each part only when known. The label is
 // "channel" for EXR files, "field" for other files (JSON) and "setting" when there is no file.
 std::string composeMessage(const std::string& file, const std::optional<int>& frame, const std::string& field,
@@ -32,9 +44,9 @@ std::string composeMessage(const std::string& file, const std::optional<int>& fr
   if (frame) msg += "frame " + std::to_string(*frame) + ": ";
   if (!field.empty()) {
     const char* label = file.empty() ? "setting" : endsWithExr(file) ? "channel" : "field";
-    msg += std::string(label) + " \"" + field + "\": ";
+    msg += std::string(label) + " \"" + shortened(field, kMaxFieldBytes) + "\": ";
   }
-  msg += problem.empty() ? std::string("invalid") : problem;
+  msg += problem.empty() ? std::string("invalid") : shortened(problem, kMaxProblemBytes);
   return oneLine(std::move(msg));
 }
 

@@ -127,7 +127,8 @@ int abCommand(const AbArgs& args) {
   Capture capture = loadCapture(args.capture);  // a bad capture is bad input before any run starts
   Side sides[2] = {{'a', resolveBinary(args.aBinary, "--a-binary"), splitWords(args.aArgs, "--a")},
                    {'b', resolveBinary(args.bBinary, "--b-binary"), splitWords(args.bArgs, "--b")}};
-  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-ab") : fs::path(args.out), "ab.json");
+  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-ab") : fs::path(args.out), ResultKind::Ab,
+                      {capture.folder});
   fs::create_directories(out.staging() / "logs");
   auto order = abbaOrder(args.rounds);
   nlohmann::json runs = nlohmann::json::array();
@@ -158,7 +159,7 @@ int abCommand(const AbArgs& args) {
     return timings;
   };
   auto comparison = judgeSides(side('a'), side('b'), args.flags);
-  int status = reportComparison(comparison, args.flags);
+  int status = reportComparison(comparison, args.flags, {out.finalPath()});
   writeFileAtomically(out.staging() / "compare.json", comparisonJson(comparison, args.flags.options).dump(2) + "\n");
   nlohmann::json record{{"tool", "aoreplay ab"}, {"capture", args.capture}, {"rounds", args.rounds}, {"order", "ABBA"},
                         {"a", {{"binary", sides[0].binary}, {"args", sides[0].args}}},

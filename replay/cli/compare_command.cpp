@@ -4,11 +4,12 @@
 #include "cli/compare_command.h"
 
 #include <memory>
-#include <regex>
 
 #include <fmt/format.h>
+#include <re2/re2.h>
 
 #include "capture/input_error.h"
+#include "capture/json_input.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "report/output_directory.h"
@@ -17,16 +18,18 @@ namespace aor::cli {
 namespace {
 
 // Drops names matching any --ignore pattern (e.g. host-link copies that are not the algorithm).
+// RE2 matches in time linear in the name and without recursion (std::regex recursed once per
+// character and overflowed the stack on a 50 000-character name).
 SideTimings withoutIgnored(SideTimings side, const std::vector<std::string>& patterns) {
   for (const auto& pattern : patterns) {
-    std::regex re;
-    try {
-      re = std::regex(pattern);
-    } catch (const std::regex_error& e) {
-      throw InputError("", std::nullopt, "--ignore", fmt::format("\"{}\" is not a regular expression: {}", pattern, e.what()));
-    }
+    RE2::Options options;
+    options.set_log_errors(false);
+    const RE2 re(pattern, options);
+    if (!re.ok())
+      throw InputError("", std::nullopt, "--ignore",
+                       fmt::format("{} is not a regular expression (RE2 syntax): {}", quoteForMessage(pattern), re.error()));
     for (auto& run : side.runs)
-      std::erase_if(run.series, [&](const auto& series) { return std::regex_search(series.name, re); });
+      std::erase_if(run.series, [&](const auto& series) { return RE2::PartialMatch(series.name, re); });
   }
   return side;
 }
@@ -39,7 +42,7 @@ struct CompareArgs {
 }  // namespace
 
 void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
-  cmd.add_option("--json", flags.json, "also write the verdicts as JSON to this file");
+  cmd.add_option("--json", flags.json, "also write the verdicts as JSON to this file (- for standard output)");
   cmd.add_option("--ignore", flags.ignore, "skip names matching this regular expression (repeatable)");
   cmd.add_option("--alpha", flags.options.alpha, "false-alarm rate over all judged names (Holm), default 0.05")
       ->check(CLI::Range(1e-9, 0.5));
@@ -67,9 +70,10 @@ Comparison judgeSides(SideTimings baseline, SideTimings candidate, const Compare
   return comparison;
 }
 
-int reportComparison(const Comparison& comparison, const CompareFlags& flags) {
-  fmt::print("{}", comparisonTable(comparison));
-  if (!flags.json.empty()) writeFileAtomically(flags.json, comparisonJson(comparison, flags.options).dump(2) + "\n");
+int reportComparison(const Comparison& comparison, const CompareFlags& flags, const std::vector<std::filesystem::path>& inputs) {
+  // With --json - the verdicts go to standard output, so the table goes to standard error.
+  fmt::print(flags.json == "-" ? stderr : stdout, "{}", comparisonTable(comparison));
+  if (!flags.json.empty()) writeFileAtomically(flags.json, comparisonJson(comparison, flags.options).dump(2) + "\n", inputs);
   return comparison.fails(flags.options) ? kExitFailed : kExitOk;
 }
 
@@ -81,7 +85,8 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_option("new", args->candidate, "new: report.json, benchmark JSON, or a folder of runs")->required();
   addCompareFlags(*cmd, args->flags);
   handlers()["compare"] = [args] {
-    return reportComparison(judgeSides(loadSide(args->baseline), loadSide(args->candidate), args->flags), args->flags);
+    return reportComparison(judgeSides(loadSide(args->baseline), loadSide(args->candidate), args->flags), args->flags,
+                            {args->baseline, args->candidate});
   };
 }
 

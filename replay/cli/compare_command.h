@@ -1,5 +1,6 @@
 #pragma once
 // What `aoreplay compare` and `aoreplay ab` share: the judging flags, and judging two sides.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,7 @@ Comparison judgeSides(SideTimings baseline, SideTimings candidate, const Compare
 
 // Prints the table, writes --json when given, and returns the exit status: 1 when the comparison
 // fails (a judged name slower, or unknown with --fail-on-unknown), else 0.
-int reportComparison(const Comparison& comparison, const CompareFlags& flags);
+// The table and, with --json, the verdicts (never over one of `inputs`); the exit code.
+int reportComparison(const Comparison& comparison, const CompareFlags& flags, const std::vector<std::filesystem::path>& inputs);
 
 }  // namespace aor::cli

@@ -65,14 +65,18 @@ int graphCommand(const GraphArgs& args) {
   auto frameGraph = buildFrameGraph(pipelines, setup, {});
   auto compiled = frameGraph.graph.compile();
 
-  fmt::print("capture: {} ({}x{}), frame {} of replay {}:{}, settings: {}\n", capture.name, capture.width,
+  // With --dot - the graph goes to standard output, so the description goes to standard error.
+  FILE* text = args.dot == "-" ? stderr : stdout;
+  fmt::print(text, "capture: {} ({}x{}), frame {} of replay {}:{}, settings: {}\n", capture.name, capture.width,
              capture.height, index, begin, end, settings.toJson().dump());
-  fmt::print("{}", graph::describe(frameGraph.graph, compiled));
-  for (const auto& [pass, why] : frameGraph.notes) fmt::print("why {} is not needed: {}\n", pass, why);
+  fmt::print(text, "{}", graph::describe(frameGraph.graph, compiled));
+  for (const auto& [pass, why] : frameGraph.notes) fmt::print(text, "why {} is not needed: {}\n", pass, why);
 
   fs::path dotPath = args.dot.empty() ? fs::path("out") / capture.name / "graph.dot" : fs::path(args.dot);
-  writeFileAtomically(dotPath, graph::toDot(frameGraph.graph, compiled));  // InputError (exit 2) if it cannot
-  fmt::print("dot: {} (render with: dot -Tsvg {} -o graph.svg)\n", dotPath.string(), dotPath.string());
+  // InputError (exit 2) if it cannot, or if it would overwrite the capture's own files.
+  writeFileAtomically(dotPath, graph::toDot(frameGraph.graph, compiled), captureFiles(capture));
+  if (args.dot != "-")
+    fmt::print("dot: {} (render with: dot -Tsvg {} -o graph.svg)\n", dotPath.string(), dotPath.string());
   return kExitOk;
 }
 
@@ -83,7 +87,7 @@ void registerGraphCommand(CLI::App& app, const Technique& help) {
   auto* cmd = app.add_subcommand("graph", "print the compiled render graph and write it as Graphviz DOT");
   cmd->add_option("capture", args->capture, "capture folder")->required();
   args->settings.add(*cmd, help);
-  cmd->add_option("--dot", args->dot, "DOT output file (default out/<capture name>/graph.dot)");
+  cmd->add_option("--dot", args->dot, "DOT output file (default out/<capture name>/graph.dot; - for standard output)");
   handlers()["graph"] = [args] { return graphCommand(*args); };
 }
 

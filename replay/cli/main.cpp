@@ -7,10 +7,13 @@
 #include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/settings_options.h"
+#include "report/output_directory.h"
 #include "techniques/registry.h"
 #include "vk/vk_check.h"
 
 int main(int argc, char** argv) {
+  // Before any thread starts: an interrupted run removes its staging folder and lock.
+  aor::cleanUpOutputsOnTermination();
   CLI::App app{"aoreplay: deterministic replay and profiling of screen-space ambient occlusion captures"};
   app.require_subcommand(1);
   const aor::Technique& help = aor::cli::techniqueForHelp(argc, argv, aor::findTechnique("gtao"));

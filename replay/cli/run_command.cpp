@@ -103,7 +103,9 @@ int runCommand(const RunArgs& args) {
   options.keepHistoryOnCut = args.keepHistoryOnCut;
   options.cameraJump = args.cameraJump;
   options.progress = printProgress;
-  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), "report.json");
+  std::vector<fs::path> inputs = {capture.folder};
+  if (!args.expect.empty()) inputs.emplace_back(args.expect);
+  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), ResultKind::Run, inputs);
 
   ReplayResult result;
   RunAnalysis analysis;

@@ -124,7 +124,8 @@ int sweepCommand(const SweepArgs& args) {
   options.frameEnd = end;
   options.repeat = args.repeat;
   options.warmup = args.warmup;
-  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out), "sweep.json");
+  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out),
+                      ResultKind::Sweep, {capture.folder});
 
   SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
   std::vector<SweepRow> rows;

@@ -4,6 +4,7 @@
 
 #include "capture/input_error.h"
 #include "generator/generator_internal.h"
+#include "report/output_directory.h"
 
 namespace aor::gen {
 namespace {
@@ -84,6 +85,9 @@ nlohmann::json sceneMetadata(const SceneInfo& scene, const GeneratorOptions& o, 
 
 void generateCapture(const GeneratorOptions& options, const std::filesystem::path& out) {
   validateOptions(options);
+  // Checked and locked before the (long) ray tracing: a folder that may not be replaced, or one
+  // another run is writing, is refused before any work.
+  OutputDirectory folder(out, ResultKind::Capture);
   const RayScene scene(options.scene);
   const double radius = options.radius ? static_cast<double>(*options.radius) : scene.info().defaultRadius;
   const auto cameras = cameraPath(scene.info(), options);
@@ -104,7 +108,8 @@ void generateCapture(const GeneratorOptions& options, const std::filesystem::pat
     frames.push_back(renderFrame(scene, cameras[i], settings, i));
     if (options.progress) options.progress(i + 1, total);
   }
-  writeCapture(out, options.width, options.height, frames, sceneMetadata(scene.info(), options, radius));
+  writeCaptureFiles(folder.staging(), options.width, options.height, frames, sceneMetadata(scene.info(), options, radius));
+  folder.commit();
 }
 
 }  // namespace aor::gen

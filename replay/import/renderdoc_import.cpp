@@ -256,7 +256,8 @@ void importRenderDoc(const RenderDocImportOptions& o, std::FILE* log) {
   if (o.normalsSpace != "world" && o.normalsSpace != "view")
     throw InputError("", std::nullopt, "--normals-space", "must be world or view, got " + o.normalsSpace);
   const std::vector<fs::path> files = renderDocInputs(o);
-  OutputDirectory out(o.out, "capture.json");  // refuses an --out it must not replace, before any work
+  // Refuses an --out it must not replace (or one holding an input), before any work.
+  OutputDirectory out(o.out, ResultKind::Capture, files);
   WorkFolder work;
   std::vector<CaptureFrameData> frames;
   json scene = {{"source", "renderdoc"}, {"frames", json::array()}};
@@ -283,7 +284,7 @@ void importRenderDoc(const RenderDocImportOptions& o, std::FILE* log) {
     }
   }
   const GBuffer& g = frames[0].gbuffer;
-  writeCapture(out.staging(), g.width, g.height, frames, scene);
+  writeCaptureFiles(out.staging(), g.width, g.height, frames, scene);
   out.commit();
   fmt::print(log, "capture: {} ({} frame{}, {}x{}, {})\n", o.out.string(), frames.size(), frames.size() == 1 ? "" : "s",
              g.width, g.height, g.normals.empty() ? "depth only" : "depth and normals");

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
 #include "blocks/pass_names.h"
+#include "capture/json_input.h"
 #include "report/compare_stats.h"
 #include "report/pipeline_time.h"
 
@@ -17,19 +18,35 @@ namespace fs = std::filesystem;
 namespace {
 
 nlohmann::json readJsonFile(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), std::nullopt, "", "cannot open the file");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string(), std::nullopt, "", fmt::format("not valid JSON: {}", e.what()));
-  }
+  // A report.json of 10^5 frames is well under 256 MiB; no array of samples is that long.
+  return readBoundedJson(path, JsonLimits{std::uint64_t(256) << 20, 10'000'000, 128});
+}
+
+// What a value is, for "got ..." in a message, without echoing a long string or a whole array.
+std::string briefly(const nlohmann::json& value) {
+  if (value.is_number()) return value.dump();
+  if (value.is_string()) return quoteForMessage(value.get_ref<const std::string&>());
+  return value.type_name();
 }
 
 double positiveNumber(const nlohmann::json& value, const fs::path& path, const std::string& field) {
   if (!value.is_number() || !(value.get<double>() > 0) || !std::isfinite(value.get<double>()))
-    throw InputError(path.string(), std::nullopt, field, fmt::format("must be a positive number, got {}", value.dump()));
+    throw InputError(path.string(), std::nullopt, field, fmt::format("must be a positive number, got {}", briefly(value)));
   return value.get<double>();
+}
+
+// Member `key` of `object`, `fallback` when it is absent; InputError naming the field when it has
+// another type (nlohmann's value() would throw its own type_error).
+template <typename T>
+T memberOr(const nlohmann::json& object, const char* key, const T& fallback, const fs::path& path,
+           const std::string& prefix) {
+  auto it = object.find(key);
+  if (it == object.end()) return fallback;
+  const bool right = std::is_same_v<T, bool> ? it->is_boolean() : it->is_string();
+  if (!right)
+    throw InputError(path.string(), std::nullopt, prefix.empty() ? key : prefix + "." + key,
+                     fmt::format("must be {}, got {}", std::is_same_v<T, bool> ? "true or false" : "a string", briefly(*it)));
+  return it->get<T>();
 }
 
 // report.json's samples are frame-major over frames x repetitions: frames[j].gpu_ms_median names
@@ -125,7 +142,7 @@ double msPerUnit(const std::string& unit, const fs::path& path, const std::strin
   if (unit == "us") return 1e-3;
   if (unit == "ms") return 1.0;
   if (unit == "s") return 1e3;
-  throw InputError(path.string(), std::nullopt, field, fmt::format("unknown time unit \"{}\"", unit));
+  throw InputError(path.string(), std::nullopt, field, fmt::format("unknown time unit {}", quoteForMessage(unit)));
 }
 
 // Google Benchmark names a benchmark with repetitions ".../repeats:N/...": without that segment a
@@ -145,12 +162,17 @@ TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
   for (size_t i = 0; i < benchmarks.size(); ++i) {
     const auto& b = benchmarks[i];
     std::string prefix = fmt::format("benchmarks[{}]", i);
-    if (b.value("run_type", "iteration") != "iteration") continue;
-    if (b.value("error_occurred", false))
-      throw InputError(path.string(), std::nullopt, prefix, fmt::format("benchmark failed: {}", b.value("error_message", "")));
-    std::string name = withoutRepetitionCount(b.value("run_name", b.value("name", "")));
+    if (!b.is_object()) throw InputError(path.string(), std::nullopt, prefix, "must be an object, got " + briefly(b));
+    const auto member = [&](const char* key, const std::string& fallback) {
+      return memberOr<std::string>(b, key, fallback, path, prefix);
+    };
+    if (member("run_type", "iteration") != "iteration") continue;
+    if (memberOr<bool>(b, "error_occurred", false, path, prefix))
+      throw InputError(path.string(), std::nullopt, prefix,
+                       fmt::format("benchmark failed: {}", quoteForMessage(member("error_message", ""))));
+    std::string name = withoutRepetitionCount(member("run_name", member("name", "")));
     if (name.empty()) throw InputError(path.string(), std::nullopt, prefix + ".name", "missing");
-    double scale = msPerUnit(b.value("time_unit", "ns"), path, prefix + ".time_unit");
+    double scale = msPerUnit(member("time_unit", "ns"), path, prefix + ".time_unit");
     double value = positiveNumber(b.contains("real_time") ? b["real_time"] : nlohmann::json(), path, prefix + ".real_time") * scale;
     auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& e) { return e.name == name; });
     if (it == samples.end()) it = samples.insert(samples.end(), {name, {}, isHostCopyPass(name.substr(0, name.find('/')))});
@@ -168,7 +190,7 @@ double PassComparison::ratio() const { return std::exp(logRatio); }
 TimingSamples loadTimingSamples(const fs::path& path) {
   auto doc = readJsonFile(path);
   if (doc.is_object() && doc.contains("benchmarks") && doc["benchmarks"].is_array()) return fromBenchmark(doc, path);
-  if (doc.is_object() && doc.value("tool", "") == "aoreplay") return fromReport(doc, path);
+  if (doc.is_object() && memberOr<std::string>(doc, "tool", "", path, "") == "aoreplay") return fromReport(doc, path);
   throw InputError(path.string(), std::nullopt, "",
                    "neither an aoreplay report.json (\"tool\": \"aoreplay\") nor Google Benchmark JSON (\"benchmarks\")");
 }

@@ -1,11 +1,11 @@
 #include "report/expectations.h"
 
-#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
+#include "capture/json_input.h"
 
 namespace aor {
 namespace {
@@ -56,14 +56,8 @@ std::string ExpectationFailure::describe() const {
 }
 
 std::vector<Threshold> loadExpectations(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), std::nullopt, "", "cannot open the expectations file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file.string(), std::nullopt, "", fmt::format("not valid JSON: {}", e.what()));
-  }
+  // A thresholds file is small: 1 MiB, and no more thresholds than that could hold.
+  const nlohmann::json j = readBoundedJson(file, JsonLimits{std::uint64_t(1) << 20, 10'000, 128});
   if (!j.is_object()) throw InputError(file.string(), std::nullopt, "", R"(must be an object {"max": {...}, "min": {...}})");
   std::vector<Threshold> thresholds;
   for (const auto& [bound, limits] : j.items()) {
@@ -72,7 +66,10 @@ std::vector<Threshold> loadExpectations(const std::filesystem::path& file) {
     if (!limits.is_object()) throw InputError(file.string(), std::nullopt, bound, "must be an object METRIC -> number");
     for (const auto& [metric, limit] : limits.items()) {
       if (!limit.is_number())
-        throw InputError(file.string(), std::nullopt, bound + "." + metric, fmt::format("must be a number, got {}", limit.dump()));
+        throw InputError(file.string(), std::nullopt, bound + "." + metric,
+                         fmt::format("must be a number, got {}", limit.is_string()
+                                                                    ? quoteForMessage(limit.get_ref<const std::string&>())
+                                                                    : std::string(limit.type_name())));
       thresholds.push_back({metric, bound == "max", limit.get<double>()});
     }
   }

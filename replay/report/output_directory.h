@@ -1,37 +1,82 @@
 #pragma once
-// Outputs are written under a temporary sibling folder and renamed into place only when the run
-// succeeded, so a failed run never leaves anything that looks like a valid result.
+// Output folders and files that neither a careless --out, a second run nor a kill can break
+// (README.md, "Outputs"):
+//   - a folder is replaced only when everything in it is something aoreplay wrote there: a result
+//     carries .aoreplay-result.json listing its entries; an older result without it qualifies when
+//     its main file (report.json, sweep.json, capture.json) is aoreplay's and every entry is one
+//     its command writes. Anything else is refused (InputError, exit 2) before any work, naming
+//     the first unexpected entry, and nothing is moved or deleted. --out may not be, lie inside or
+//     hold an input of the run;
+//   - one writer per output: an flock on .NAME.lock beside it, held from the constructor to the
+//     destructor; a second run is refused at once, naming the holder's process id;
+//   - the result is staged in .NAME.tmp-PID and swapped in with renameat2(RENAME_EXCHANGE), or,
+//     where the file system lacks it, moved aside to .NAME.old-PID and renamed in. So NAME is at
+//     every moment the complete old result or the complete new one; after a kill between the two
+//     renames of the fallback, the next run on NAME puts the old one back. The next run also
+//     removes the staging folders of dead runs (holding the lock, it knows they are dead).
+// Files (--json, --dot) are written to a temporary file and renamed over the target.
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <vector>
+
+#include "capture/input_error.h"
 
 namespace aor {
 
+// What a result folder holds; each kind knows what its command writes (output_directory.cpp).
+// What a result folder holds (each command's): decides which older results without the marker may
+// be replaced. Kinds newer than the marker (ab, tune) are replaced only by what their marker lists.
+enum class ResultKind { Run, Sweep, Capture, Ab, Tune };
+
 class OutputDirectory {
  public:
-  // `marker` is the file every earlier result of the same kind holds (report.json, sweep.json).
-  // Committing replaces finalPath, i.e. deletes it: so an existing finalPath must be an empty
-  // folder or one holding `marker`, which is checked here, before any work. Throws InputError
-  // (field --out) otherwise, or when the staging folder cannot be created.
-  OutputDirectory(std::filesystem::path finalPath, const std::string& marker);
-  ~OutputDirectory();  // removes the staging folder unless committed
+  // Checks finalPath, takes the lock, finishes or undoes what killed runs left, and creates the
+  // staging folder. `inputs` (files or folders the run reads) must neither be finalPath nor lie
+  // inside it or hold it. Throws InputError (field --out).
+  OutputDirectory(std::filesystem::path finalPath, ResultKind kind, const std::vector<std::filesystem::path>& inputs = {});
+  ~OutputDirectory();  // removes the staging folder unless committed, then releases the lock
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
 
   const std::filesystem::path& staging() const { return staging_; }
   const std::filesystem::path& finalPath() const { return final_; }
-  // Replaces the previous result at finalPath, if any, with the staged one.
+  // Writes the marker and swaps the staged result in for the previous one, which is then removed.
+  // Throws InputError when something aoreplay did not write appeared in finalPath meanwhile (it
+  // is kept; the new result is discarded).
   void commit();
 
+  // For the termination handler: removes what an unfinished run leaves (staging, lock).
+  void abandon();
+
  private:
-  std::filesystem::path final_;
+  void recoverInterruptedRuns();
+  void createStaging(const std::function<InputError(const std::string&)>& fail);
+  void swapIn();
+  bool exchangeIn(const std::function<InputError(const std::string&)>& appeared);
+  std::filesystem::path moveAsideAndIn(const std::function<InputError(const std::string&)>& appeared);
+  void releaseLock();
+
+  std::filesystem::path final_, parent_;
+  std::string name_;
+  ResultKind kind_;
   std::filesystem::path staging_;
+  std::filesystem::path lockPath_;
+  int lockFd_ = -1;
   bool committed_ = false;
 };
 
-// The same for one file: missing parent folders are created, `text` goes to a temporary file
-// beside `path` (".NAME.tmp-PID") and that is renamed over `path` once complete, so `path` is
-// either untouched or the whole new file. Throws InputError naming `path` when it cannot be
-// written (it names a folder, a parent is a regular file, ...); the temporary file never stays.
-void writeFileAtomically(const std::filesystem::path& path, const std::string& text);
+// One file output: `text` goes to a temporary file beside `path` (".NAME.tmp-PID"), renamed over
+// `path` once complete, so `path` is either untouched or the whole new file. Missing parent
+// folders are created. Refused (InputError naming `path`): an existing `path` that is not a
+// regular file (folder, symbolic link, FIFO, device), and one that is one of `inputs`. "-" writes
+// to standard output. Temporary files of dead processes beside `path` are removed.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& text,
+                         const std::vector<std::filesystem::path>& inputs = {});
+
+// Call first in main(), before any thread starts: SIGINT, SIGTERM and SIGHUP are then handled on a
+// thread of their own, which removes the staging folders, locks and temporary files of the outputs
+// in progress (a commit under way finishes first) and then ends the process by the same signal.
+void cleanUpOutputsOnTermination();
 
 }  // namespace aor

@@ -1,5 +1,7 @@
 #include "techniques/parameters.h"
 
+#include "capture/capture.h"  // kMinAoRadius, kMaxAoRadius: the range loadCapture checks scene.ao_radius against
+
 #include <cmath>
 #include <utility>
 
@@ -66,7 +68,7 @@ std::string describeRange(const Parameter& p) {
 }
 
 Parameter radiusParameter(double fallback) {
-  Parameter p = floatParameter(kRadiusKey, fallback, 1e-6, 1e7,
+  Parameter p = floatParameter(kRadiusKey, fallback, kMinAoRadius, kMaxAoRadius,
                                fmt::format("AO radius in world units; default the capture's scene.ao_radius, else {}", float(fallback)),
                                true);
   p.shared = true;

@@ -137,7 +137,7 @@ TEST_F(RoundTrip, OutputIsByteIdenticalAcrossRuns) {
   writeCapture(dir / "b", kW, kH, frames, awkwardScene());
   const auto a = snapshot(dir / "a");
   const auto b = snapshot(dir / "b");
-  ASSERT_EQ(a.size(), 1u + 3u + 2u);  // capture.json, 3 G-buffers, 2 references
+  ASSERT_EQ(a.size(), 1u + 3u + 2u + 1u);  // capture.json, 3 G-buffers, 2 references, .aoreplay-result.json
   EXPECT_TRUE(a == b) << "two writes of the same capture differ";
   // Rewriting in place replaces the folder and gives the same bytes again.
   writeCapture(dir / "a", kW, kH, frames, awkwardScene());
@@ -213,7 +213,7 @@ TEST_F(RoundTrip, WriteRefusesToReplaceAFolderThatIsNotACapture) {
   fs::create_directories(dir / "precious");
   writeBytes(dir / "precious/notes.txt", "keep me");
   EXPECT_INPUT_ERROR(writeCapture(dir / "precious", kW, kH, makeFrames(kW, kH, 1), nullptr), "precious",
-                     "no capture.json");
+                     "holds \"notes.txt\", which aoreplay did not write there");
   EXPECT_EQ(readBytes(dir / "precious/notes.txt"), "keep me");
 }
 

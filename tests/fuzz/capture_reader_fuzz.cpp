@@ -2,7 +2,8 @@
 // validation, path checks, EXR header/channel checks and pixel decoding are all reachable.
 // Input layout: capture.json text, then optionally a NUL byte and the bytes of frames/0000.exr
 // (a NUL cannot occur in valid JSON, so the split is unambiguous). Bad input must surface as
-// aor::InputError; any other exception, crash, leak or sanitizer report is a finding.
+// aor::InputError; any other exception, crash, leak, sanitizer report or disagreement of the
+// bounded JSON parser's two paths is a finding.
 #include <unistd.h>
 
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "capture/capture.h"
+#include "json_fuzz_support.h"
 
 namespace {
 
@@ -39,6 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const fs::path& folder = captureFolder();
   const auto* split = static_cast<const uint8_t*>(std::memchr(data, 0, size));
   const size_t jsonSize = split ? size_t(split - data) : size;
+  aor::fuzz::checkBothParsersAgree(data, jsonSize, aor::kCaptureJsonLimits);
   writeFile(folder / "capture.json", data, jsonSize);
   std::error_code ignored;
   fs::remove(folder / "frames" / "0000.exr", ignored);

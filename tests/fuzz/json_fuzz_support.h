@@ -1,0 +1,47 @@
+#pragma once
+// Shared by the JSON-file fuzz targets: the input goes to a private file (the loaders read files,
+// so the size, FIFO and regular-file checks are on the path too), and the bounded parser's two
+// paths are held to the same answer.
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#include "capture/input_error.h"
+#include "capture/json_input.h"
+
+namespace aor::fuzz {
+
+// One private file per process and target, rewritten for every input (libFuzzer runs one at a time).
+inline std::filesystem::path inputFile(const std::string& name, const uint8_t* data, size_t size) {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("aor-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  const auto path = dir / name;
+  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  return path;
+}
+
+// parseBoundedJson (simdjson, then nlohmann for errors) and the nlohmann path alone must agree:
+// the same document, or both an InputError. Anything else is a finding (__builtin_trap).
+inline void checkBothParsersAgree(const uint8_t* data, size_t size, const JsonLimits& limits) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  std::optional<nlohmann::json> fast, slow;
+  try {
+    fast = parseBoundedJson(text, limits, "input");
+  } catch (const InputError&) {
+  }
+  try {
+    slow = detail::parseBoundedJsonSlowly(text, limits, "input");
+  } catch (const InputError&) {
+  }
+  if (fast.has_value() != slow.has_value()) __builtin_trap();
+  if (fast && *fast != *slow) __builtin_trap();
+}
+
+}  // namespace aor::fuzz
