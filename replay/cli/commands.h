@@ -21,6 +21,7 @@ void registerSweepCommand(CLI::App& app, const Technique& help);
 void registerTechniquesCommand(CLI::App& app);
 void registerAbCommand(CLI::App& app);
 void registerImportCommand(CLI::App& app);
+void registerTuneCommand(CLI::App& app);
 int runSelected(CLI::App& app);
 
 }  // namespace aor::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   aor::cli::registerTechniquesCommand(app);
   aor::cli::registerAbCommand(app);
   aor::cli::registerImportCommand(app);
+  aor::cli::registerTuneCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);

@@ -48,8 +48,12 @@ const Technique& techniqueForHelp(int argc, const char* const* argv, const Techn
 void SettingsOptions::add(CLI::App& command, const Technique& help) {
   std::vector<std::string> names;
   for (const auto* t : userTechniques()) names.push_back(t->name);
-  command.add_option("--technique", technique, fmt::format("{} (aoreplay techniques lists them)", fmt::join(names, ", ")))
-      ->capture_default_str();
+  techniqueOption =
+      command.add_option("--technique", technique, fmt::format("{} (aoreplay techniques lists them)", fmt::join(names, ", ")))
+          ->capture_default_str();
+  command.add_option("--settings", settingsFile,
+                     "settings file (format aoreplay-settings, as `aoreplay tune` writes): technique, preset, keys and "
+                     "radius scale; --preset and --set apply on top");
   command.add_option("--preset", preset, fmt::format("presets of {}: {}", help.name, presetTable(help)));
   command.add_option("--set", assignments,
                      fmt::format("KEY=VALUE, repeatable: a key of {} (listed below; --technique NAME --help for "
@@ -64,9 +68,18 @@ void SettingsOptions::add(CLI::App& command, const Technique& help) {
   command.footer(fmt::format("Keys of technique {} (--set KEY=VALUE):\n{}", help.name, keyTable(help)));
 }
 
-Settings SettingsOptions::resolve(const Capture& capture) const {
-  return resolveSettings(findTechnique(technique), capture, preset, assignments);
+SettingsRecipe SettingsOptions::recipe() const {
+  if (settingsFile.empty()) return SettingsRecipe{technique, preset, assignments, 1.0};
+  SettingsRecipe recipe = readSettingsFile(settingsFile);
+  if (techniqueOption && techniqueOption->count() && technique != recipe.technique)
+    throw InputError(settingsFile, std::nullopt, "technique",
+                     fmt::format("the file is for technique {}, --technique asks for {}", recipe.technique, technique));
+  if (!preset.empty()) recipe.preset = preset;
+  recipe.assignments.insert(recipe.assignments.end(), assignments.begin(), assignments.end());
+  return recipe;
 }
+
+Settings SettingsOptions::resolve(const Capture& capture) const { return recipe().resolve(capture); }
 
 std::pair<int, int> SettingsOptions::frameRange(const Capture& capture) const {
   int total = int(capture.frames.size());

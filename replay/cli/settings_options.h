@@ -8,6 +8,7 @@
 
 #include "capture/capture.h"
 #include "techniques/settings.h"
+#include "techniques/settings_file.h"
 
 namespace aor::cli {
 
@@ -15,13 +16,19 @@ struct SettingsOptions {
   std::string technique = "gtao";        // --technique NAME
   std::string preset;                    // --preset (empty: the technique's default)
   std::vector<std::string> assignments;  // --set KEY=VALUE
+  std::string settingsFile;              // --settings FILE (techniques/settings_file.h)
   std::string frames;                    // --frames A:B (half-open)
   std::vector<std::string> debugViews;   // --debug VIEW
+  const CLI::Option* techniqueOption = nullptr;  // set by add(): whether --technique was given
   // Adds the options; the help lists `helpTechnique`'s presets and keys (the one named by
   // --technique on the command line, else the default).
   void add(CLI::App& command, const Technique& helpTechnique);
   // The technique, its preset, the capture's scene.ao_radius, then --set in order. Throws InputError.
   Settings resolve(const Capture& capture) const;
+  // What the options ask for before a capture is known: --settings FILE's recipe (its technique,
+  // preset and keys; --preset and --set given too go on top, a different --technique is refused),
+  // else --technique, --preset and --set. Throws InputError.
+  SettingsRecipe recipe() const;
   // Parses --frames against the capture; {0, frames} when not given.
   std::pair<int, int> frameRange(const Capture& capture) const;
 };

@@ -12,6 +12,7 @@
 #include "metrics/error_metrics.h"
 #include "pipeline/replayer.h"
 #include "techniques/registry.h"
+#include "techniques/settings_file.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
 #include "report/stats.h"
@@ -28,6 +29,7 @@ struct SweepArgs {
   std::string presets;  // comma-separated; empty: every preset of each technique
   std::vector<std::string> grid;
   std::vector<std::string> assignments;
+  std::string settingsFile;  // --settings FILE: technique, preset, keys and radius scale to start from
   std::string frames;
   int repeat = 3;
   int warmup = 1;
@@ -112,8 +114,16 @@ int sweepCommand(const SweepArgs& args) {
   range.frames = args.frames;
   auto [begin, end] = range.frameRange(capture);
   SweepRequest request{splitPresets(args.presets), args.grid, args.assignments};
+  SettingsRecipe base{request.defaultTechnique, "", {}, 1.0};
+  if (!args.settingsFile.empty()) {
+    base = readSettingsFile(args.settingsFile);
+    request.defaultTechnique = base.technique;
+    if (request.presets.empty() && !base.preset.empty()) request.presets = {base.preset};
+    request.assignments.insert(request.assignments.begin(), base.assignments.begin(), base.assignments.end());
+  }
   auto plan = expandSweep(request, [&](const Technique& t, std::string_view preset, const std::vector<std::string>& assignments) {
-    return resolveSettings(t, capture, preset, assignments);
+    double scale = t.name == base.technique ? base.radiusScale : 1.0;
+    return SettingsRecipe{t.name, std::string(preset), assignments, scale}.resolve(capture);
   });  // bad presets, keys and grids fail before any work
   for (const auto& note : plan.notes) fmt::print(stderr, "{}\n", note);
   if (plan.configs.empty())
@@ -166,6 +176,9 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
                   "of a technique in the sweep (applied to those that have it)");
   cmd->add_option("--set", args->assignments,
                   "KEY=VALUE applied to every configuration whose technique has the key, before the grid");
+  cmd->add_option("--settings", args->settingsFile,
+                  "settings file (as `aoreplay tune` writes): its technique is the default, its preset the default "
+                  "preset, its keys go before --set, its radius scale applies to its technique");
   cmd->add_option("--frames", args->frames, "half-open frame range A:B (default: all)");
   cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();

@@ -28,6 +28,13 @@ std::string Technique::keyList() const {
   return keys.empty() ? "(none)" : fmt::format("{}", fmt::join(keys, ", "));
 }
 
+std::string Technique::tunableKeyList() const {
+  std::vector<std::string> keys;
+  for (const auto& p : parameters)
+    if (p.tunable) keys.push_back(p.key);
+  return keys.empty() ? "(none)" : fmt::format("{}", fmt::join(keys, ", "));
+}
+
 std::string Technique::presetList() const {
   std::vector<std::string> names;
   for (const auto& p : presets) names.push_back(p.name);

@@ -101,6 +101,7 @@ struct Technique {
   const Preset* preset(std::string_view name) const;
   const DebugView* debugView(std::string_view name) const;
   std::string keyList() const;     // "radius, slices, steps, ..."
+  std::string tunableKeyList() const;  // the keys `aoreplay tune` searches by default, or "(none)"
   std::string presetList() const;  // "low, medium, high, ultra" or "(none)"
 };
 
