@@ -116,9 +116,10 @@ std::string tuneSummary(const TuneRun& run) {
   auto rows = [&](const char* kind, const ConfigScore& before, const ConfigScore& after) {
     for (size_t c = 0; c < before.captures.size(); ++c) {
       const auto &b = before.captures[c], &a = after.captures[c];
-      out += fmt::format("  {:<9} {:<24} {} {:.5f} -> {:.5f} ({:+.1f} %)   rmse {:.5f} -> {:.5f}   ssim {:.4f} -> {:.4f}\n",
-                         kind, b.capture, run.objective, b.objective, a.objective, 100.0 * (a.objective / b.objective - 1.0),
-                         b.rmse, a.rmse, b.ssim, a.ssim);
+      std::string rmse = run.objective == "rmse" ? "" : fmt::format("   rmse {:.5f} -> {:.5f}", b.rmse, a.rmse);
+      out += fmt::format("  {:<9} {:<24} {} {:.5f} -> {:.5f} ({:+.1f} %){}   ssim {:.4f} -> {:.4f}\n", kind, b.capture,
+                         run.objective, b.objective, a.objective, 100.0 * (a.objective / b.objective - 1.0), rmse, b.ssim,
+                         a.ssim);
     }
   };
   rows("training", run.trainingBefore, run.trainingAfter);
