@@ -129,9 +129,10 @@ SettingsRecipe candidate(const TuneArgs& args, const std::vector<TuneDimension>&
   return recipe;
 }
 
-double objectiveOf(const std::string& objective, double rmse, double ssim) {
+double objectiveOf(const std::string& objective, double rmse, double ssim, double flip) {
   if (objective == "mse") return rmse * rmse;
   if (objective == "ssim") return 1.0 - ssim;
+  if (objective == "flip") return flip;
   return rmse;
 }
 
@@ -141,7 +142,7 @@ CaptureScore scoreCapture(VulkanContext& vk, const TuneCapture& t, const Setting
   options.frameEnd = t.end;
   options.repeat = args.repeat;
   options.warmup = args.warmup;
-  ErrorAnalysis errors("ray-traced");
+  ErrorAnalysis errors("ray-traced", args.objective == "flip");
   auto result = replayCapture(vk, t.capture, options, [&](const FrameOutput& f) {
     auto ref = t.references.find(f.index);
     if (ref == t.references.end()) return;
@@ -160,7 +161,8 @@ CaptureScore scoreCapture(VulkanContext& vk, const TuneCapture& t, const Setting
   auto summary = errors.summaryJson();
   CaptureScore s{t.capture.name, int(t.references.size()), summary["rmse"].get<double>(), 0, summary["ssim"].get<double>()};
   s.mse = s.rmse * s.rmse;
-  s.objective = objectiveOf(args.objective, s.rmse, s.ssim);
+  s.flip = summary.value("flip", 0.0);
+  s.objective = objectiveOf(args.objective, s.rmse, s.ssim, s.flip);
   s.ms = totalMedianMs(timedFrames(result));
   return s;
 }
@@ -196,8 +198,8 @@ auto progressPrinter(const TuneArgs& args, const std::vector<TuneDimension>& dim
 
 int tuneCommand(const TuneArgs& args) {
   const Technique& technique = findTechnique(args.technique);
-  if (args.objective != "rmse" && args.objective != "mse" && args.objective != "ssim")
-    throw InputError("", std::nullopt, "--objective", fmt::format("'{}' is not rmse, mse or ssim", args.objective));
+  if (args.objective != "rmse" && args.objective != "mse" && args.objective != "ssim" && args.objective != "flip")
+    throw InputError("", std::nullopt, "--objective", fmt::format("'{}' is not rmse, mse, ssim or flip", args.objective));
   std::vector<TuneCapture> training, holdout;
   std::vector<fs::path> inputs;
   for (const auto& c : args.captures) training.push_back(loadTuneCapture(c, args.frames));
@@ -277,7 +279,8 @@ void registerTuneCommand(CLI::App& app) {
   cmd->add_option("--keys", args->keys,
                   "comma-separated keys to search (default: those the technique marks tunable; `aoreplay techniques` "
                   "lists them); radius is searched as radius_scale, a factor in [0.25, 4] on each capture's scene.ao_radius");
-  cmd->add_option("--objective", args->objective, "rmse, mse or ssim (1 - SSIM), mean over the training captures")
+  cmd->add_option("--objective", args->objective,
+                  "rmse, mse, ssim (1 - SSIM) or flip (mean LDR-FLIP), mean over the training captures")
       ->capture_default_str();
   cmd->add_option("--budget-ms", args->budgetMs,
                   "GPU ms per frame (median compute total): configurations over it are never chosen (times are "

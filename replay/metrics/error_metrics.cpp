@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "metrics/flip.h"
 #include "metrics/percentile.h"
 
 namespace aor {
@@ -89,7 +90,7 @@ double maskedSsim(const float* a, const float* b, const uint8_t* mask, int width
 }  // namespace
 
 ErrorMetrics computeErrorMetrics(const float* output, const float* reference, const float* depth, int width, int height,
-                                 bool reversedDepth) {
+                                 bool reversedDepth, bool withFlip) {
   size_t n = size_t(width) * size_t(height);
   std::vector<uint8_t> mask(n);
   std::vector<double> absErrors;
@@ -114,18 +115,21 @@ ErrorMetrics computeErrorMetrics(const float* output, const float* reference, co
   m.psnr = psnrFromMse(m.sumSquared / count);
   m.ssim = maskedSsim(output, reference, mask.data(), width, height);
   m.p99 = nearestRankPercentile(std::move(absErrors), 0.99);
+  if (withFlip) m.flip = meanFlip(reference, output, mask.data(), width, height);
   return m;
 }
 
 nlohmann::json toJson(const ErrorMetrics& m) {
-  return {{"pixels", m.pixels}, {"rmse", m.rmse}, {"mae", m.mae},   {"max", m.maxError},
-          {"bias", m.bias},     {"psnr", finiteOrNull(m.psnr)}, {"ssim", m.ssim}, {"p99", m.p99}};
+  nlohmann::json j{{"pixels", m.pixels}, {"rmse", m.rmse}, {"mae", m.mae},   {"max", m.maxError},
+                   {"bias", m.bias},     {"psnr", finiteOrNull(m.psnr)}, {"ssim", m.ssim}, {"p99", m.p99}};
+  if (m.flip) j["flip"] = *m.flip;
+  return j;
 }
 
 void ErrorAnalysis::addFrame(const AnalyzedFrame& frame) {
   if (!frame.reference || !frame.visibility) return;
   frames_[frame.index] = computeErrorMetrics(frame.visibility, frame.reference->data(), frame.depth, frame.width,
-                                             frame.height, isReversedDepth(frame.projection));
+                                             frame.height, isReversedDepth(frame.projection), withFlip_);
 }
 
 nlohmann::json ErrorAnalysis::frameJson(int index) const {
@@ -137,8 +141,9 @@ nlohmann::json ErrorAnalysis::summaryJson() const {
   if (frames_.empty()) return nullptr;
   ErrorMetrics pooled;
   std::vector<double> rmse, ssim;
-  double p99Sum = 0;
+  double p99Sum = 0, flipSum = 0;
   for (const auto& [index, m] : frames_) {
+    flipSum += m.flip.value_or(0.0) * double(m.pixels);
     pooled.pixels += m.pixels;
     pooled.sumSquared += m.sumSquared;
     pooled.sumAbsolute += m.sumAbsolute;
@@ -156,6 +161,7 @@ nlohmann::json ErrorAnalysis::summaryJson() const {
   pooled.ssim = 0;
   for (double s : ssim) pooled.ssim += s / double(ssim.size());
   pooled.p99 = p99Sum / double(frames_.size());
+  if (withFlip_) pooled.flip = flipSum / count;
   auto j = toJson(pooled);
   j["reference"] = referenceKind_;
   j["frames"] = frames_.size();

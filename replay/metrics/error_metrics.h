@@ -9,12 +9,15 @@
 //   ssim (Wang et al. 2004 with an 11x11 Gaussian window, sigma 1.5, C1 = 0.01^2, C2 = 0.03^2 on
 //         visibility in [0,1]; windows use only non-sky pixels (weights renormalised), and the
 //         SSIM map is averaged over non-sky pixels),
-//   p99 (99th percentile of |e|, nearest rank), pixels (how many were compared).
+//   p99 (99th percentile of |e|, nearest rank), pixels (how many were compared),
+//   flip (only when asked for: mean LDR-FLIP over the non-sky pixels, metrics/flip.h; the images
+//         are filtered whole, sky included, as a viewer sees them).
 // Summary over frames: rmse, mae, bias and psnr pooled over every compared pixel of every frame,
-// max the largest max, ssim and p99 the mean over frames, plus min/mean/max of the per-frame rmse
-// and ssim.
+// max the largest max, ssim and p99 the mean over frames, flip pooled over pixels, plus
+// min/mean/max of the per-frame rmse and ssim.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -29,22 +32,25 @@ struct ErrorMetrics {
   int64_t pixels = 0;
   double rmse = 0, mae = 0, maxError = 0, bias = 0, psnr = 0, ssim = 1, p99 = 0;
   double sumSquared = 0, sumAbsolute = 0, sumSigned = 0;  // for pooling over frames
+  std::optional<double> flip;
 };
 
 // `depth` may be null (nothing masked). Pixels with no non-sky neighbour in a window are skipped.
 ErrorMetrics computeErrorMetrics(const float* output, const float* reference, const float* depth, int width, int height,
-                                 bool reversedDepth);
+                                 bool reversedDepth, bool withFlip = false);
 
 class ErrorAnalysis {
  public:
   // `referenceKind` names what the reference is ("ray-traced", "screen-space"); it is reported.
-  explicit ErrorAnalysis(std::string referenceKind = "ray-traced") : referenceKind_(std::move(referenceKind)) {}
+  explicit ErrorAnalysis(std::string referenceKind = "ray-traced", bool withFlip = false)
+      : referenceKind_(std::move(referenceKind)), withFlip_(withFlip) {}
   void addFrame(const AnalyzedFrame& frame);
   nlohmann::json frameJson(int index) const;  // null when the frame had no reference
   nlohmann::json summaryJson() const;         // null when no frame had one
 
  private:
   std::string referenceKind_;
+  bool withFlip_ = false;
   std::map<int, ErrorMetrics> frames_;
 };
 

@@ -15,11 +15,12 @@ json valuesJson(const TuneRun& run, const std::vector<double>& values) {
   return j;
 }
 
-json scoreJson(const ConfigScore& score, bool withTimes) {
+json scoreJson(const ConfigScore& score, const std::string& objective, bool withTimes) {
   json captures = json::array();
   for (const auto& c : score.captures) {
     json j{{"capture", c.capture}, {"frames", c.frames}, {"rmse", c.rmse}, {"mse", c.mse}, {"ssim", c.ssim},
            {"objective", c.objective}};
+    if (objective == "flip") j["flip"] = c.flip;
     if (withTimes) j = json{{"capture", c.capture}, {"ms", c.ms}};
     captures.push_back(j);
   }
@@ -28,9 +29,9 @@ json scoreJson(const ConfigScore& score, bool withTimes) {
 }
 
 json beforeAfter(const TuneRun& run, bool withTimes) {
-  json j{{"training", {{"before", scoreJson(run.trainingBefore, withTimes)}, {"after", scoreJson(run.trainingAfter, withTimes)}}}};
-  if (!run.holdout.empty())
-    j["holdout"] = {{"before", scoreJson(run.holdoutBefore, withTimes)}, {"after", scoreJson(run.holdoutAfter, withTimes)}};
+  auto score = [&](const ConfigScore& s) { return scoreJson(s, run.objective, withTimes); };
+  json j{{"training", {{"before", score(run.trainingBefore)}, {"after", score(run.trainingAfter)}}}};
+  if (!run.holdout.empty()) j["holdout"] = {{"before", score(run.holdoutBefore)}, {"after", score(run.holdoutAfter)}};
   return j;
 }
 

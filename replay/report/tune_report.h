@@ -16,6 +16,7 @@ struct CaptureScore {
   std::string capture;
   int frames = 0;         // frames with a reference, scored
   double rmse = 0, mse = 0, ssim = 0;
+  double flip = 0;        // mean LDR-FLIP; only computed for --objective flip
   double objective = 0;   // of the run's --objective
   double ms = 0;          // median compute total per frame
 };

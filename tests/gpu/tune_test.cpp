@@ -49,6 +49,21 @@ TEST(Tune, TwoTunesGiveTheSameTuneJsonAndTheBestIsNoWorseThanTheStart) {
   EXPECT_NE(a.output.find("[7/7]"), std::string::npos) << "progress per evaluation: " << a.output;
 }
 
+// The FLIP objective is what is minimised and reported.
+TEST(Tune, TheFlipObjectiveIsMeanLdrFlip) {
+  fs::path dir = scratchDir("tune-flip");
+  auto r = runAoreplay(fmt::format("tune {} --frames 0:1 --keys power --objective flip --max-evaluations 3 --out {}",
+                                   shipped("bunny-orbit"), (dir / "out").string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  json t = readJson(dir / "out" / "tune.json");
+  EXPECT_EQ(t["objective"], "flip");
+  json before = t["results"]["training"]["before"]["captures"][0];
+  EXPECT_EQ(before["objective"], before["flip"]);
+  EXPECT_GT(before["flip"].get<double>(), 0.01);
+  EXPECT_LT(before["flip"].get<double>(), 0.5);
+  EXPECT_NE(before["flip"], before["rmse"]);
+}
+
 TEST(Tune, RunAndSweepTakeTheTunedSettingsFile) {
   fs::path dir = scratchDir("tune-settings");
   std::ofstream(dir / "s.json") << R"({"format": "aoreplay-settings", "version": 1, "technique": "gtao",
