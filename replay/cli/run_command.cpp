@@ -11,6 +11,7 @@
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
 #include "metrics/run_analysis.h"
+#include "pipeline/analyzed_output.h"
 #include "pipeline/replayer.h"
 #include "techniques/frame_graph.h"
 #include "report/expectations.h"
@@ -49,11 +50,8 @@ void printProgress(int done, int total) {
 
 void analyzeFrame(RunAnalysis& analysis, const Capture& capture, const FrameOutput& frame, float historyWeight,
                   const std::map<int, std::vector<float>>& noHistory) {
-  const auto& desc = capture.frames[size_t(frame.index)];
   auto reference = loadReference(capture, frame.index);
-  AnalyzedFrame analyzed{frame.index, frame.width, frame.height, frame.visibility.data(), frame.gbuffer->depth.data(),
-                         desc.view, desc.projection, desc.cut, frame.historyValid, frame.resetReason,
-                         reference ? &*reference : nullptr};
+  AnalyzedFrame analyzed = analyzedFrame(capture, frame, reference ? &*reference : nullptr);
   analyzed.historyWeight = historyWeight;
   if (auto it = noHistory.find(frame.index); it != noHistory.end()) analyzed.noHistory = it->second.data();
   analysis.addFrame(analyzed);

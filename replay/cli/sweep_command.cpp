@@ -10,6 +10,7 @@
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
+#include "pipeline/analyzed_output.h"
 #include "pipeline/replayer.h"
 #include "techniques/registry.h"
 #include "techniques/settings_file.h"
@@ -73,16 +74,7 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
   options.settings = config.settings;
   ErrorAnalysis errors(reference.kind);
   auto result = replayCapture(vk, capture, options, [&](const FrameOutput& f) {
-    const auto& desc = capture.frames[size_t(f.index)];
-    AnalyzedFrame analyzed;
-    analyzed.index = f.index;
-    analyzed.width = f.width;
-    analyzed.height = f.height;
-    analyzed.visibility = f.visibility.data();
-    analyzed.depth = f.gbuffer->depth.data();
-    analyzed.view = desc.view;
-    analyzed.projection = desc.projection;
-    analyzed.reference = &reference.frames.at(f.index);
+    AnalyzedFrame analyzed = analyzedFrame(capture, f, &reference.frames.at(f.index));
     errors.addFrame(analyzed);
   });
   SweepRow row{config};

@@ -12,6 +12,7 @@
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
+#include "pipeline/analyzed_output.h"
 #include "pipeline/replayer.h"
 #include "report/output_directory.h"
 #include "report/pipeline_time.h"
@@ -146,16 +147,7 @@ CaptureScore scoreCapture(VulkanContext& vk, const TuneCapture& t, const Setting
   auto result = replayCapture(vk, t.capture, options, [&](const FrameOutput& f) {
     auto ref = t.references.find(f.index);
     if (ref == t.references.end()) return;
-    const auto& desc = t.capture.frames[size_t(f.index)];
-    AnalyzedFrame frame;
-    frame.index = f.index;
-    frame.width = f.width;
-    frame.height = f.height;
-    frame.visibility = f.visibility.data();
-    frame.depth = f.gbuffer->depth.data();
-    frame.view = desc.view;
-    frame.projection = desc.projection;
-    frame.reference = &ref->second;
+    AnalyzedFrame frame = analyzedFrame(t.capture, f, &ref->second);
     errors.addFrame(frame);
   });
   auto summary = errors.summaryJson();
