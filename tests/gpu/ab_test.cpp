@@ -148,7 +148,7 @@ TEST(Ab, BadArgumentsAreRefusedBeforeAnyRun) {
   refused(fmt::format("ab {} --rounds 0", ab.capture), "--rounds");
   fs::create_directories(ab.out);
   std::ofstream(ab.out / "precious.txt") << "keep";
-  refused(ab.command(1, "", ""), "not an earlier result");
+  refused(ab.command(1, "", ""), "which aoreplay did not write there");
   EXPECT_TRUE(fs::exists(ab.out / "precious.txt"));
 }
 
