@@ -11,6 +11,7 @@ needs it fails.
 """
 import argparse
 import base64
+import fcntl
 import json
 import os
 import shutil
@@ -64,20 +65,25 @@ KEY_ELEMENTS = {
 }
 
 
+def high_fd(fd):
+    """The fd moved to 10 or above, clear of the 3 and 4 the child needs."""
+    moved = fcntl.fcntl(fd, fcntl.F_DUPFD, 10)
+    os.close(fd)
+    return moved
+
+
 class Browser:
     def __init__(self, chromium):
         self.profile = tempfile.mkdtemp(prefix="aoreplay-chromium-")
-        to_child_r, self.to_child = os.pipe()
-        self.from_child, from_child_w = os.pipe()
+        to_child_r, self.to_child = (high_fd(fd) for fd in os.pipe())
+        self.from_child, from_child_w = (high_fd(fd) for fd in os.pipe())
 
-        def wire():
-            os.dup2(to_child_r, 3)
-            os.dup2(from_child_w, 4)
-
-        args = [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--remote-debugging-pipe",
+        args = ["--headless", "--no-sandbox", "--disable-gpu", "--remote-debugging-pipe",
                 "--no-first-run", "--no-default-browser-check", "--disable-extensions",
                 f"--user-data-dir={self.profile}", "about:blank"]
-        self.process = subprocess.Popen(args, pass_fds=(to_child_r, from_child_w), preexec_fn=wire,
+        # The protocol runs on fds 3 (commands in) and 4 (replies out): a shell puts the pipes there.
+        wire = f'exec "$0" "$@" 3<&{to_child_r} 4>&{from_child_w} {to_child_r}<&- {from_child_w}>&-'
+        self.process = subprocess.Popen(["bash", "-c", wire, chromium] + args, pass_fds=(to_child_r, from_child_w),
                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.close(to_child_r)
         os.close(from_child_w)

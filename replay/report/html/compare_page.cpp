@@ -49,8 +49,8 @@ std::string comparePageHtml(const Comparison& c, const CompareOptions& options) 
                          {"values tested", level},
                          {"rule", fmt::format("Mann-Whitney U, Holm-corrected over {} judged name(s) at alpha {:g}; minimum effect x{:g} "
                                               "and {:g} ms", c.judgedNames, options.alpha, 1 + options.minEffect, options.minEffectMs)},
-                         {"only in baseline", fmt::format("{}", fmt::join(c.onlyInBaseline, ", "))},
-                         {"only in new", fmt::format("{}", fmt::join(c.onlyInNew, ", "))}}));
+                         {"only in baseline", c.onlyInBaseline.empty() ? "(none)" : fmt::format("{}", fmt::join(c.onlyInBaseline, ", "))},
+                         {"only in new", c.onlyInNew.empty() ? "(none)" : fmt::format("{}", fmt::join(c.onlyInNew, ", "))}}));
   page.section("verdicts-section", "Verdicts", verdictTable(c));
   page.section("distributions", "Both sides' values per name (shaded: the threshold band around the baseline median)", distributions(c));
   return page.html();

@@ -14,7 +14,7 @@
 namespace aor::html {
 namespace {
 
-constexpr int kShownWidth = 320;  // CSS pixels per image: small captures are scaled up, pixelated
+constexpr int kShownWidth = 300;  // four a row on a 1280-pixel page  // CSS pixels per image: small captures are scaled up, pixelated
 
 bool isSky(const FrameImages& f, size_t i) { return i < f.sky.size() && f.sky[i]; }
 

@@ -1,5 +1,7 @@
 #include "report/html/html_page.h"
 
+#include <cctype>
+
 #include <fmt/format.h>
 
 namespace aor::html {
@@ -11,6 +13,7 @@ h1 { font-size: 22px; margin-bottom: 4px; }
 h2 { font-size: 17px; border-bottom: 1px solid #ccc; padding-bottom: 3px; margin-top: 28px; }
 table { border-collapse: collapse; font-size: 13px; margin: 6px 0; }
 th, td { border: 1px solid #ddd; padding: 3px 8px; text-align: right; }
+td.text { text-align: left; }
 th { background: #f2f2f2; }
 td:first-child, th:first-child { text-align: left; }
 table.sortable th { cursor: pointer; }
@@ -19,6 +22,9 @@ dl.facts { display: grid; grid-template-columns: max-content auto; gap: 2px 14px
 dl.facts dt { font-weight: bold; }
 dl.facts dd { margin: 0; font-family: monospace; word-break: break-all; }
 figure { display: inline-block; margin: 4px 8px 4px 0; vertical-align: top; }
+.graph svg { max-width: 100%; height: auto; }
+.distribution { display: inline-block; vertical-align: top; margin-right: 16px; }
+.distribution h3 { font-size: 14px; margin: 10px 0 2px; }
 figure img { image-rendering: pixelated; border: 1px solid #ccc; }
 figcaption { font-size: 12px; max-width: 340px; }
 .note { font-size: 13px; color: #555; }
@@ -53,6 +59,12 @@ document.querySelectorAll('table.sortable').forEach(function (table) {
   });
 });
 )js";
+
+// Numbers (and "x1.02" ratios) align right, text left.
+bool looksNumeric(const std::string& cell) {
+  size_t i = cell.starts_with("x") || cell.starts_with("-") ? 1 : 0;
+  return i < cell.size() && std::isdigit(static_cast<unsigned char>(cell[i]));
+}
 
 }  // namespace
 
@@ -96,7 +108,7 @@ std::string Table::html() const {
   out += "</tr></thead>\n<tbody>\n";
   for (const auto& row : rows) {
     out += "<tr>";
-    for (const auto& cell : row) out += cell.starts_with("<td") ? cell : "<td>" + cell + "</td>";
+    for (const auto& cell : row) out += cell.starts_with("<td") ? cell : looksNumeric(cell) ? "<td>" + cell + "</td>" : "<td class=\"text\">" + cell + "</td>";
     out += "</tr>\n";
   }
   return out + "</tbody></table>\n";
