@@ -66,7 +66,6 @@ TEST(ReportCli, ReportHtmlIsDeterministic) {
   fs::path dir = scratchDir("report-determinism");
   for (const char* name : {"a", "b"})
     ASSERT_EQ(runAoreplay(fmt::format("run {} --out {}", capture.string(), (dir / name).string())).exitCode, 0);
-  EXPECT_EQ(readText(dir / "a" / "report.html").size(), readText(dir / "b" / "report.html").size());
   // Timings differ between runs; images, graph and memory do not.
   auto images = [&](const char* name) {
     std::string html = readText(dir / name / "report.html");
