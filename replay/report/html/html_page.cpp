@@ -26,7 +26,7 @@ figure { display: inline-block; margin: 4px 8px 4px 0; vertical-align: top; }
 .distribution { display: inline-block; vertical-align: top; margin-right: 16px; }
 .distribution h3 { font-size: 14px; margin: 10px 0 2px; }
 figure img { image-rendering: pixelated; border: 1px solid #ccc; }
-figcaption { font-size: 12px; max-width: 340px; }
+figcaption { font-size: 12px; max-width: 300px; }
 .note { font-size: 13px; color: #555; }
 .fail { color: #b00; font-weight: bold; }
 .pass { color: #070; }

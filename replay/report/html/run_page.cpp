@@ -135,7 +135,9 @@ std::string passesHtml(const json& report) {
   return html + (culled.rows.empty() ? "<p class=\"note\">No pass was culled.</p>\n" : culled.html());
 }
 
-std::string graphHtml(const std::string& dot) {
+std::string graphHtml(std::string dot) {
+  // A pass chain is far longer than the page is wide: drawn top to bottom, its labels stay legible.
+  if (auto lr = dot.find("rankdir=LR"); lr != std::string::npos) dot.replace(lr, 10, "rankdir=TB");
   std::string svg = graphSvg(dot);
   if (!svg.empty()) return "<div class=\"graph\">" + svg + "</div>\n<p class=\"note\">Dashed grey: culled passes.</p>\n";
   return "<pre class=\"graph\">" + escape(dot.empty() ? "(no graph recorded)" : dot) + "</pre>\n";
