@@ -1,12 +1,16 @@
 // Pieces of the HTML reports and of --junit that need no device: base64 for the embedded PNGs,
 // JUnit XML of --expect, and plot labels that never overlap.
+#include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "report/html/html_page.h"
+#include "gpu_test_support.h"
 #include "report/junit.h"
+#include "report/run_summary.h"
 #include "report/svg_plot.h"
 
 namespace aor {
@@ -78,6 +82,18 @@ TEST(SvgPlot, ResetMarkersAreLabelledAndTheKeyListsNumberedPoints) {
   EXPECT_NE(svg.find(">reset: cut</text>"), std::string::npos) << svg;
   EXPECT_NE(svg.find(">1 = low</text>"), std::string::npos) << svg;
   EXPECT_NE(svg.find(">2 = high</text>"), std::string::npos) << svg;
+}
+
+TEST(RunSummary, OutputListingNamesEveryFileAndEachFolderOfFramesOnce) {
+  namespace fs = std::filesystem;
+  fs::path dir = test::scratchDir("output-listing");
+  for (const char* file : {"report.json", "report.html", "temporal.svg", "ao/0000.exr", "ao/0000.png", "ao/0001.exr",
+                           "ao/0001.png", "debug/linear_depth/0000.exr", ".aoreplay-result.json"}) {
+    fs::create_directories((dir / file).parent_path());
+    std::ofstream(dir / file) << "x";
+  }
+  EXPECT_EQ(outputListing(dir),
+            "report.html, report.json, temporal.svg, ao/ (4 file(s): NNNN.exr, NNNN.png), debug/linear_depth/ (1 file(s): NNNN.exr)");
 }
 
 }  // namespace
