@@ -12,7 +12,8 @@ packages=(
   libnlopt-cxx-dev # derivative-free optimiser behind aoreplay tune (replay/tune/)
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
-  graphviz
+  graphviz libgraphviz-dev  # report.html lays out the render graph with Graphviz's library
+  chromium libxml2-utils     # browser test of the HTML reports (tests/browser/); xmllint checks --junit XML
   python3 python3-renderdoc librenderdoc librenderdoc-dev  # aoreplay import renderdoc; rd_scene (tests/renderdoc/)
   xvfb xauth  # vkcube under xvfb-run, captured through RenderDoc target control (tests/renderdoc/)
   clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/

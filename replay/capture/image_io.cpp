@@ -9,6 +9,7 @@
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -538,20 +539,30 @@ std::string writePngRaw(FILE* fp, int width, int height, int colorType, png_byte
   return {};
 }
 
-void writePng(const fs::path& path, int width, int height, int channels, const float* values) {
-  if (width <= 0 || height <= 0) throw std::invalid_argument(fmt::format("writePng: invalid size {}x{}", width, height));
-  if (!values) throw std::invalid_argument("writePng: no data");
-  const size_t rowBytes = static_cast<size_t>(width) * channels;
-  std::vector<std::uint8_t> bytes(rowBytes * static_cast<size_t>(height));
-  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = toByte(values[i]);
-  std::vector<png_bytep> rows(static_cast<size_t>(height));
-  for (int y = 0; y < height; ++y) rows[y] = bytes.data() + rowBytes * static_cast<size_t>(y);
+// 8-bit samples of `values` and the row pointers libpng takes.
+struct PngRows {
+  std::vector<std::uint8_t> bytes;
+  std::vector<png_bytep> rows;
+  PngRows(int width, int height, int channels, const float* values) {
+    if (width <= 0 || height <= 0) throw std::invalid_argument(fmt::format("writePng: invalid size {}x{}", width, height));
+    if (!values) throw std::invalid_argument("writePng: no data");
+    const size_t rowBytes = static_cast<size_t>(width) * channels;
+    bytes.resize(rowBytes * static_cast<size_t>(height));
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = toByte(values[i]);
+    rows.resize(static_cast<size_t>(height));
+    for (int y = 0; y < height; ++y) rows[y] = bytes.data() + rowBytes * static_cast<size_t>(y);
+  }
+};
 
+int pngColorType(int channels) { return channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB; }
+
+void writePng(const fs::path& path, int width, int height, int channels, const float* values) {
+  PngRows png(width, height, channels, values);
   const std::string display = path.string();
   FILE* fp = std::fopen(path.c_str(), "wb");
   if (!fp) throw InputError(display, std::nullopt, "", "cannot create file: " + errnoText());
   const std::string error =
-      writePngRaw(fp, width, height, channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, rows.data());
+      writePngRaw(fp, width, height, pngColorType(channels), png.rows.data());
   const bool closeFailed = std::fclose(fp) != 0;
   if (!error.empty()) throw InputError(display, std::nullopt, "", "cannot write PNG: " + error);
   if (closeFailed) throw InputError(display, std::nullopt, "", "cannot write PNG: " + errnoText());
@@ -565,6 +576,21 @@ void writePngGray(const fs::path& path, int width, int height, const float* valu
 
 void writePngRgb(const fs::path& path, int width, int height, const float* values) {
   writePng(path, width, height, 3, values);
+}
+
+std::string encodePng(int width, int height, int channels, const float* values) {
+  if (channels != 1 && channels != 3) throw std::invalid_argument("encodePng: 1 or 3 channels");
+  PngRows png(width, height, channels, values);
+  char* buffer = nullptr;
+  size_t size = 0;
+  FILE* memory = open_memstream(&buffer, &size);
+  if (!memory) throw std::runtime_error("encodePng: " + errnoText());
+  const std::string error = writePngRaw(memory, width, height, pngColorType(channels), png.rows.data());
+  std::fclose(memory);  // sets buffer and size
+  std::string bytes(buffer ? buffer : "", buffer ? size : 0);
+  std::free(buffer);
+  if (!error.empty()) throw std::runtime_error("encodePng: " + error);
+  return bytes;
 }
 
 }  // namespace aor

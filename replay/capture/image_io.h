@@ -32,5 +32,7 @@ std::map<std::string, std::vector<float>> readExrChannels(const std::filesystem:
 void writePngGray(const std::filesystem::path& path, int width, int height, const float* values);
 // 8-bit RGB; values width*height*3 in [0,1].
 void writePngRgb(const std::filesystem::path& path, int width, int height, const float* values);
+// The PNG file writePngGray (channels 1) or writePngRgb (3) would write, as bytes in memory.
+std::string encodePng(int width, int height, int channels, const float* values);
 
 }  // namespace aor

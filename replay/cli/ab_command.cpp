@@ -19,6 +19,7 @@
 #include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/compare_command.h"
+#include "report/html/compare_page.h"
 #include "cli/handlers.h"
 #include "report/output_directory.h"
 
@@ -161,13 +162,14 @@ int abCommand(const AbArgs& args) {
   auto comparison = judgeSides(side('a'), side('b'), args.flags);
   int status = reportComparison(comparison, args.flags, {out.finalPath()});
   writeFileAtomically(out.staging() / "compare.json", comparisonJson(comparison, args.flags.options).dump(2) + "\n");
+  writeFileAtomically(out.staging() / "compare.html", html::comparePageHtml(comparison, args.flags.options));
   nlohmann::json record{{"tool", "aoreplay ab"}, {"capture", args.capture}, {"rounds", args.rounds}, {"order", "ABBA"},
                         {"a", {{"binary", sides[0].binary}, {"args", sides[0].args}}},
                         {"b", {{"binary", sides[1].binary}, {"args", sides[1].args}}},
                         {"runs", runs}, {"exit_status", status}};
   writeFileAtomically(out.staging() / "ab.json", record.dump(2) + "\n");
   out.commit();
-  fmt::print("outputs: {}/ (a/NN, b/NN: one run each; compare.json; ab.json; logs/)\n", out.finalPath().string());
+  fmt::print("outputs: {}/ (a/NN, b/NN: one run each; compare.json; compare.html; ab.json; logs/)\n", out.finalPath().string());
   return status;
 }
 

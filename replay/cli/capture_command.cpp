@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "options/progress.h"
 #include "generator/generator.h"
 #include "options/size.h"
 
@@ -27,10 +28,9 @@ int captureCommand(CaptureArgs& args) {
   std::tie(o.width, o.height) = parseSize(args.size, "--size");
   if (args.radius > 0.0f) o.radius = args.radius;
   o.writeNormals = !args.noNormals;
-  bool tty = isatty(STDERR_FILENO);
-  o.progress = [tty](int done, int total) {
-    if (tty) fmt::print(stderr, "\rgenerating frame {}/{}{}", done, total, done == total ? "\n" : "");
-  };
+  // A bar on a terminal, a line every few seconds off one (options/progress.h): ray-traced
+  // references take seconds a frame.
+  o.progress = progressCallback("capture", "frames");
   gen::generateCapture(o, args.out);
   fmt::print("capture: {} ({} {}x{}, {} frames, path {}, reference spp {})\n", args.out, o.scene, o.width, o.height,
              o.frames, o.path, o.referenceSpp);
@@ -48,13 +48,14 @@ void registerCaptureCommand(CLI::App& app) {
   cmd->add_option("--frames", args->options.frames, "number of frames")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--path", args->options.path, "orbit | dolly | static | cut | strafe")->capture_default_str();
   cmd->add_option("--reference-spp", args->options.referenceSpp, "reference rays per pixel (0: no reference)")
-      ->check(CLI::Range(0, 1 << 20));
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
   cmd->add_option("--radius", args->radius, "AO radius in world units (default: the scene's)");
   cmd->add_flag("--reversed-z", args->options.reversedZ, "reversed depth (near 1, far 0)");
   cmd->add_flag("--infinite-far", args->options.infiniteFar, "infinite far plane");
   cmd->add_flag("--no-normals", args->noNormals, "depth-only capture (normals reconstructed on replay)");
-  cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0));
-  cmd->add_option("--seed", args->options.seed, "seed of the reference sampling");
+  cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0))->capture_default_str();
+  cmd->add_option("--seed", args->options.seed, "seed of the reference sampling")->capture_default_str();
   handlers()["capture"] = [args] { return captureCommand(*args); };
 }
 

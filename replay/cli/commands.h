@@ -11,6 +11,10 @@ inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitNoDevice = 3;
 
+// --device's help, one text for every command that creates a device (vk/device_selection.h).
+inline constexpr const char* kDeviceHelp =
+    "Vulkan device: index, alias (lavapipe, cpu) or a piece of its name or driver name; default lavapipe";
+
 // `help`: the technique whose keys the help text lists (--technique on the command line, else gtao).
 void registerRunCommand(CLI::App& app, const Technique& help);
 void registerCaptureCommand(CLI::App& app);

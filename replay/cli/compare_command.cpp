@@ -12,6 +12,8 @@
 #include "capture/json_input.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "report/html/compare_page.h"
+#include "report/junit.h"
 #include "report/output_directory.h"
 
 namespace aor::cli {
@@ -43,18 +45,23 @@ struct CompareArgs {
 
 void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
   cmd.add_option("--json", flags.json, "also write the verdicts as JSON to this file (- for standard output)");
+  cmd.add_option("--junit", flags.junit, "also write the verdicts as JUnit XML to this file (one test case per name)");
   cmd.add_option("--ignore", flags.ignore, "skip names matching this regular expression (repeatable)");
-  cmd.add_option("--alpha", flags.options.alpha, "false-alarm rate over all judged names (Holm), default 0.05")
-      ->check(CLI::Range(1e-9, 0.5));
-  cmd.add_option("--min-effect", flags.options.minEffect, "smallest median change that counts, as a ratio either way (default 0.02)")
-      ->check(CLI::Range(0.0, 10.0));
+  cmd.add_option("--alpha", flags.options.alpha, "false-alarm rate over all judged names (Holm)")
+      ->check(CLI::Range(1e-9, 0.5))
+      ->capture_default_str();
+  cmd.add_option("--min-effect", flags.options.minEffect, "smallest median change that counts, as a ratio either way")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   cmd.add_option("--min-effect-ms", flags.options.minEffectMs,
-                 "smallest absolute median change that counts, in milliseconds (default 0.001)")
-      ->check(CLI::Range(0.0, 1e6));
+                 "smallest absolute median change that counts, in milliseconds")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   cmd.add_option("--spread-multiple", flags.options.spreadMultiple,
                  "spreads (robust, of log values) of the noisier side a change must exceed: to count at all with "
-                 "within-run samples, to be unknown rather than same with runs (default 2)")
-      ->check(CLI::Range(0.0, 100.0));
+                 "within-run samples, to be unknown rather than same with runs")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   cmd.add_flag("--judge-host-copies", flags.options.judgeHostCopies,
                "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");
   cmd.add_flag("--fail-on-unknown", flags.options.failOnUnknown,
@@ -74,6 +81,9 @@ int reportComparison(const Comparison& comparison, const CompareFlags& flags, co
   // With --json - the verdicts go to standard output, so the table goes to standard error.
   fmt::print(flags.json == "-" ? stderr : stdout, "{}", comparisonTable(comparison));
   if (!flags.json.empty()) writeFileAtomically(flags.json, comparisonJson(comparison, flags.options).dump(2) + "\n", inputs);
+  if (!flags.junit.empty())
+    writeFileAtomically(flags.junit, junitXml("aoreplay compare", comparisonCases(comparison, flags.options)), inputs);
+  if (!flags.html.empty()) writeFileAtomically(flags.html, html::comparePageHtml(comparison, flags.options), inputs);
   return comparison.fails(flags.options) ? kExitFailed : kExitOk;
 }
 
@@ -84,6 +94,7 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_option("baseline", args->baseline, "baseline: report.json, benchmark JSON, or a folder of runs")->required();
   cmd->add_option("new", args->candidate, "new: report.json, benchmark JSON, or a folder of runs")->required();
   addCompareFlags(*cmd, args->flags);
+  cmd->add_option("--html", args->flags.html, "also write compare.html (verdicts, both distributions, thresholds) to this file");
   handlers()["compare"] = [args] {
     return reportComparison(judgeSides(loadSide(args->baseline), loadSide(args->candidate), args->flags), args->flags,
                             {args->baseline, args->candidate});

@@ -7,6 +7,7 @@
 #include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/settings_options.h"
+#include "cli/version.h"
 #include "report/output_directory.h"
 #include "techniques/registry.h"
 #include "vk/vk_check.h"
@@ -16,6 +17,10 @@ int main(int argc, char** argv) {
   aor::cleanUpOutputsOnTermination();
   CLI::App app{"aoreplay: deterministic replay and profiling of screen-space ambient occlusion captures"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", [] {
+    auto text = aor::cli::versionText();
+    return text.substr(0, text.size() - 1);  // CLI11 ends it with a newline
+  }, "version, git commit, Vulkan loader and every device's driver version; exit");
   const aor::Technique& help = aor::cli::techniqueForHelp(argc, argv, aor::findTechnique("gtao"));
   aor::cli::registerRunCommand(app, help);
   aor::cli::registerCaptureCommand(app);
@@ -33,6 +38,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

@@ -1,6 +1,6 @@
 // `aoreplay run`: replay a capture, time each pass, write images, report.json and trace.json.
-#include <unistd.h>
-
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -9,14 +9,19 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "options/progress.h"
 #include "cli/settings_options.h"
+#include "metrics/depth.h"
 #include "metrics/run_analysis.h"
 #include "pipeline/analyzed_output.h"
 #include "pipeline/replayer.h"
 #include "techniques/frame_graph.h"
 #include "report/expectations.h"
+#include "report/html/run_page.h"
+#include "report/junit.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
+#include "report/run_summary.h"
 #include "report/temporal_plot.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
@@ -40,13 +45,37 @@ struct RunArgs {
   bool keepHistoryOnCut = false;
   CameraJumpLimits cameraJump;
   std::string expect;  // thresholds file (report/expectations.h)
+  std::string junit;   // JUnit XML of the --expect checks
 };
 
-void printProgress(int done, int total) {
-  if (!isatty(STDERR_FILENO)) return;
-  fmt::print(stderr, "\rreplaying frame {}/{}", done, total);
-  if (done == total) fmt::print(stderr, "\n");
-}
+// The frames report.html shows, and the previous frame of each (for flicker), kept as they pass.
+class ShownFrames {
+ public:
+  explicit ShownFrames(std::vector<int> shown) : shown_(std::move(shown)) {}
+  void keep(const Capture& capture, const FrameOutput& frame) {
+    bool isShown = std::find(shown_.begin(), shown_.end(), frame.index) != shown_.end();
+    bool isPrevious = std::find(shown_.begin(), shown_.end(), frame.index + 1) != shown_.end();
+    if (isPrevious) previous_[frame.index] = frame.visibility;
+    if (!isShown) return;
+    html::FrameImages images{frame.index, frame.width, frame.height, frame.visibility, loadReference(capture, frame.index), {}, {}};
+    const auto& desc = capture.frames[size_t(frame.index)];
+    float far = isReversedDepth(desc.projection) ? 0.0f : 1.0f;
+    images.sky.resize(frame.visibility.size());
+    for (size_t i = 0; i < images.sky.size() && i < frame.gbuffer->depth.size(); ++i)
+      images.sky[i] = !std::isfinite(frame.gbuffer->depth[i]) || frame.gbuffer->depth[i] == far;
+    frames_.push_back(std::move(images));
+  }
+  std::vector<html::FrameImages> take() {
+    for (auto& f : frames_)
+      if (auto it = previous_.find(f.index - 1); it != previous_.end()) f.previousAo = it->second;
+    return std::move(frames_);
+  }
+
+ private:
+  std::vector<int> shown_;
+  std::map<int, std::vector<float>> previous_;
+  std::vector<html::FrameImages> frames_;
+};
 
 void analyzeFrame(RunAnalysis& analysis, const Capture& capture, const FrameOutput& frame, float historyWeight,
                   const std::map<int, std::vector<float>>& noHistory) {
@@ -100,13 +129,14 @@ int runCommand(const RunArgs& args) {
   options.preloadBudgetBytes = uint64_t(args.preloadBudgetMiB * double(1 << 20));
   options.keepHistoryOnCut = args.keepHistoryOnCut;
   options.cameraJump = args.cameraJump;
-  options.progress = printProgress;
+  options.progress = progressCallback("replay", "frames");
   std::vector<fs::path> inputs = {capture.folder};
   if (!args.expect.empty()) inputs.emplace_back(args.expect);
   OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), ResultKind::Run, inputs);
 
   ReplayResult result;
   RunAnalysis analysis;
+  ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
   size_t validationMessages = 0;
   {
     ContextScope context({args.device, args.validate});
@@ -115,6 +145,7 @@ int runCommand(const RunArgs& args) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
       for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);
       analyzeFrame(analysis, capture, frame, historyWeightOf(options.settings), noHistory);
+      shown.keep(capture, frame);
     });
     destroyContext(context.vk);  // waits for the device; the last validation messages arrive here
     validationMessages = context.vk.validationMessageCount();
@@ -125,12 +156,15 @@ int runCommand(const RunArgs& args) {
   writeJson(out.staging() / "report.json", report);
   writeJson(out.staging() / "trace.json", buildTrace(result));
   writeTemporalPlots(out.staging(), report);
+  std::vector<std::string> summary = {errorLine(report), temporalLine(report)};
+  writeText(out.staging() / "report.html", html::runPageHtml({report, shown.take(), result.graphDot, summary}));
 
   fmt::print("device: {} ({})\n", result.device.name, result.device.driver);
   fmt::print("capture: {} ({}x{}, frames {}:{}), settings: {}\n", capture.name, capture.width, capture.height,
              options.frameBegin, options.frameEnd, options.settings.toJson().dump());
   fmt::print("{}", passTable(result));
   for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
+  for (const auto& line : summary) fmt::print("{}\n", line);
   HostOverhead overhead = hostOverhead(result);
   fmt::print("set-up: {:.1f} ms (pipelines{})\n", result.setupMs,
              result.timingMode == TimingMode::Overlapped ? "; the first frame's decode overlaps it" : "");
@@ -144,11 +178,16 @@ int runCommand(const RunArgs& args) {
   }
   // Before the commit: a threshold naming a metric the report lacks is bad input and leaves nothing.
   auto failures = checkExpectations(expectations, report, args.expect);
+  std::string written = outputListing(out.staging());
   out.commit();
   if (args.validate) fmt::print("validation: 0 messages (synchronization validation on)\n");
-  fmt::print("outputs: {}/ (ao/NNNN.exr, ao/NNNN.png{}{}, report.json, trace.json)\n", out.finalPath().string(),
-             args.noImages ? " skipped by --no-images" : "",
-             options.debugViews.empty() ? "" : fmt::format(", debug/{{{}}}/NNNN.exr and .png", fmt::join(options.debugViews, ",")));
+  fmt::print("outputs: {}/ ({}{})\n", out.finalPath().string(), written, args.noImages ? "; frame images skipped by --no-images" : "");
+  if (!args.junit.empty()) {
+    auto cases = expectationCases(expectations, failures);
+    writeFileAtomically(args.junit, junitXml("aoreplay run --expect " + args.expect, cases), inputs);
+    fmt::print("junit: {} ({} test case(s), {} failed)\n", args.junit, cases.size(),
+               std::count_if(cases.begin(), cases.end(), [](const JunitCase& c) { return c.failure.has_value(); }));
+  }
   if (failures.empty()) {
     if (!expectations.empty()) fmt::print("expectations: all {} met ({})\n", expectations.size(), args.expect);
     return kExitOk;
@@ -179,17 +218,22 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
       ->check(CLI::Range(1.0, 1048576.0))
       ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>/)");
-  cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
+  cmd->add_option("--device", args->device, kDeviceHelp);
   cmd->add_flag("--validate", args->validate, "Khronos validation + synchronization validation; any message fails");
   cmd->add_flag("--no-images", args->noImages, "skip writing per-frame EXR/PNG");
   cmd->add_option("--expect", args->expect,
                   "JSON thresholds {\"max\": {METRIC: limit}, \"min\": {...}}; any violation: exit 1 after writing outputs");
+  cmd->add_option("--junit", args->junit,
+                  "with --expect: also write the checks as JUnit XML to this file (one test case per threshold)")
+      ->needs(cmd->get_option("--expect"));
   cmd->add_option("--jump-angle", args->cameraJump.maxRotationDegrees,
-                  "reset history when the camera turns more than this many degrees between frames (default 45, 0 = off)")
-      ->check(CLI::Range(0.0, 180.0));
+                  "reset history when the camera turns more than this many degrees between frames (0 = off)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
   cmd->add_option("--jump-distance", args->cameraJump.maxMoveFraction,
-                  "reset history when the camera moves more than this fraction of the median view distance (default 1, 0 = off)")
-      ->check(CLI::NonNegativeNumber);
+                  "reset history when the camera moves more than this fraction of the median view distance (0 = off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
                 "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")
       ->group("");

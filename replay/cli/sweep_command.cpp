@@ -1,5 +1,6 @@
 // `aoreplay sweep`: replays a capture under several configurations in one Vulkan context and
 // puts each one's GPU time next to its error against the reference (table, sweep.json/.csv/.svg).
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -8,12 +9,14 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "options/progress.h"
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
 #include "pipeline/analyzed_output.h"
 #include "pipeline/replayer.h"
 #include "techniques/registry.h"
 #include "techniques/settings_file.h"
+#include "report/html/sweep_page.h"
 #include "report/output_directory.h"
 #include "report/run_outputs.h"
 #include "report/stats.h"
@@ -136,8 +139,12 @@ int sweepCommand(const SweepArgs& args) {
     info.device = context.vk.info.name;
     auto reference = sweepReference(context.vk, capture, begin, end, args.assignments);
     info.referenceKind = reference.kind;
+    // A line per configuration, with the time left estimated from the ones done (cli/progress.h).
+    auto start = std::chrono::steady_clock::now();
     for (size_t i = 0; i < configs.size(); ++i) {
-      fmt::print(stderr, "[{}/{}] {}\n", i + 1, configs.size(), configs[i].name);
+      double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fmt::print(stderr, "[{}/{}] {} ({})\n", i + 1, configs.size(), configs[i].name,
+                 Progress::status("configurations", int(i), int(configs.size()), elapsed));
       rows.push_back(measure(context.vk, capture, options, configs[i], reference));
     }
   }
@@ -145,12 +152,13 @@ int sweepCommand(const SweepArgs& args) {
   writeJson(out.staging() / "sweep.json", sweepJson(info, rows));
   writeText(out.staging() / "sweep.csv", sweepCsv(rows));
   writeText(out.staging() / "sweep.svg", sweepSvg(info, rows));
+  writeText(out.staging() / "sweep.html", html::sweepPageHtml(info, rows));
   out.commit();
 
   fmt::print("capture: {} (frames {}:{}), device: {}, error against the {} reference, {} timed run(s) per frame\n",
              capture.name, options.frameBegin, options.frameEnd, info.device, info.referenceKind, args.repeat);
   fmt::print("{}", sweepTable(rows));
-  fmt::print("outputs: {}/ (sweep.json, sweep.csv, sweep.svg)\n", out.finalPath().string());
+  fmt::print("outputs: {}/ (sweep.json, sweep.csv, sweep.svg, sweep.html)\n", out.finalPath().string());
   return kExitOk;
 }
 
@@ -175,7 +183,7 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
   cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
-  cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
+  cmd->add_option("--device", args->device, kDeviceHelp);
   cmd->footer(fmt::format("Keys of technique {} (aoreplay techniques lists every technique's):\n{}", help.name,
                           keyTable(help)));
   handlers()["sweep"] = [args] { return sweepCommand(*args); };

@@ -158,6 +158,7 @@ struct FrameGraphRuns {
 
   std::vector<CulledPassInfo> culled;
   std::string description;
+  std::string dot;
   uint64_t peakBytes = 0, unaliasedBytes = 0;
   nlohmann::json resources;
 };
@@ -193,6 +194,7 @@ FrameGraphRuns runFrameGraph(const FrameBuilder::Setup& setup, PipelineCache& pi
       runs.culled.push_back({name, note == frameGraph.notes.end() ? c.reason : note->second + "; " + c.reason});
     }
     runs.description = graph::describe(frameGraph.graph, compiled);
+    runs.dot = graph::toDot(frameGraph.graph, compiled);
     runs.peakBytes = compiled.peakBytes();
     runs.unaliasedBytes = compiled.unaliasedTransientBytes + compiled.persistentBytes;
     runs.resources = graphResourcesJson(frameGraph.graph, compiled);
@@ -427,6 +429,7 @@ class Replay {
     if (lastFrame) {
       result_.culled = std::move(runs.culled);
       result_.graphDescription = std::move(runs.description);
+      result_.graphDot = std::move(runs.dot);
       result_.peakGpuBytes = runs.peakBytes;
       result_.unaliasedGpuBytes = runs.unaliasedBytes;
       result_.resources = std::move(runs.resources);

@@ -94,6 +94,7 @@ struct ReplayResult {
   std::vector<FrameRecord> frames;
   std::vector<CulledPassInfo> culled;       // of the last frame's graph
   std::string graphDescription;             // describe() of the last frame's compiled graph
+  std::string graphDot;                     // graph::toDot() of the same, drawn in report.html
   uint64_t peakGpuBytes = 0;                // resources of the compiled graph, aliasing included
   uint64_t unaliasedGpuBytes = 0;
   nlohmann::json resources;                 // graphResourcesJson() of the last frame's graph

@@ -286,6 +286,8 @@ PassComparison measureName(const NameValues& base, const NameValues& other, cons
   p.judged = !base.hostCopy || options.judgeHostCopies;
   p.baselineCount = base.values.size();
   p.newCount = other.values.size();
+  p.baselineValues = base.values;
+  p.newValues = other.values;
   p.baselineMedian = medianOf(base.values);
   p.newMedian = medianOf(other.values);
   p.logRatio = std::log(p.newMedian) - std::log(p.baselineMedian);  // exactly antisymmetric in the sides

@@ -66,6 +66,7 @@ const char* levelText(Level level);
 struct PassComparison {
   std::string name;
   size_t baselineCount = 0, newCount = 0;  // values tested: runs, or samples
+  std::vector<double> baselineValues, newValues;  // those values (ms), drawn in compare.html
   double baselineMedian = 0, newMedian = 0;
   double logRatio = 0;        // ln(new median / baseline median): x2 and x0.5 are equally far
   double effectFloor = 0;     // smallest |logRatio| that matters: --min-effect and --min-effect-ms

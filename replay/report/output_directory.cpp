@@ -50,11 +50,11 @@ struct KindInfo {
 
 const KindInfo& kindInfo(ResultKind kind) {
   static const KindInfo run{"run", "report.json",
-                            {"report.json", "trace.json", "temporal.svg", "temporal_response.svg", "ao", "ao/#.exr",
+                            {"report.json", "report.html", "trace.json", "temporal.svg", "temporal_response.svg", "ao", "ao/#.exr",
                              "ao/#.png"},
                             [](const json& j) { return j.is_object() && j.value("tool", json()) == "aoreplay"; }};
   static const KindInfo sweep{"sweep", "sweep.json",
-                              {"sweep.json", "sweep.csv", "sweep.svg"},
+                              {"sweep.json", "sweep.csv", "sweep.svg", "sweep.html"},
                               [](const json& j) {
                                 return j.is_object() && j.contains("rows") && j["rows"].is_array() &&
                                        j.contains("capture") && j["capture"].is_string();

@@ -121,44 +121,111 @@ void drawAxes(std::string& svg, const Axis& x, const Axis& y, const PlotOptions&
                      (top + bottom) / 2, escapeXml(o.yLabel), y.log ? " (log scale)" : "");
 }
 
-void drawVerticalMarkers(std::string& svg, const Axis& x, const Axis& y, const std::vector<double>& markers) {
-  for (double v : markers) {
+void drawVerticalMarkers(std::string& svg, const Axis& x, const Axis& y, const PlotOptions& o) {
+  for (size_t k = 0; k < o.verticalMarkers.size(); ++k) {
+    double v = o.verticalMarkers[k];
     if (!usable(v, x.log)) continue;
     double px = x.toPixel(v);
     if (px < x.pixelLo || px > x.pixelHi) continue;
     svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#888" stroke-dasharray="5 4"/>)" "\n",
                        px, y.pixelHi, px, y.pixelLo);
+    if (k < o.verticalMarkerLabels.size() && !o.verticalMarkerLabels[k].empty())  // up the line: labels of near markers never cross
+      svg += fmt::format(R"svg(<text transform="translate({:.1f} {:.1f}) rotate(-90)" text-anchor="end" font-size="10" fill="#555">{}</text>)svg" "\n",
+                         px - 3, y.pixelHi + 4, escapeXml(o.verticalMarkerLabels[k]));
   }
 }
 
-void drawSeries(std::string& svg, const PlotSeries& s, const char* color, const Axis& x, const Axis& y) {
-  std::vector<std::pair<double, double>> points;  // pixel positions of drawable points, with index
-  std::vector<size_t> indices;
-  for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-    if (usable(s.x[i], x.log) && usable(s.y[i], y.log)) {
-      points.emplace_back(x.toPixel(s.x[i]), y.toPixel(s.y[i]));
-      indices.push_back(i);
+// Rectangles of text already placed and of points, in pixels: labels go where they overlap none.
+struct Box {
+  double left, top, right, bottom;
+  bool overlaps(const Box& o) const { return left < o.right && o.left < right && top < o.bottom && o.top < bottom; }
+};
+constexpr double kLabelCharWidth = 6.4, kLabelHeight = 11;
+
+Box labelBox(double anchorX, double baselineY, size_t chars, bool rightAligned) {
+  double width = kLabelCharWidth * double(chars);
+  double left = rightAligned ? anchorX - width : anchorX;
+  return {left, baselineY - kLabelHeight + 2, left + width, baselineY + 2};
+}
+
+// Where a point's label goes: the first spot, nearest first, in eight directions around it that
+// stays inside the plot and overlaps no placed label or point. Returns the anchor, alignment and
+// whether a leader line is needed (spots beyond the nearest ring).
+struct LabelSpot {
+  double x, y;
+  bool rightAligned, leader;
+};
+
+LabelSpot placeLabel(double px, double py, size_t chars, const Axis& x, const Axis& y, std::vector<Box>& taken) {
+  static constexpr double kDirections[8][2] = {{1, -1}, {1, 1}, {-1, -1}, {-1, 1}, {1, 0}, {-1, 0}, {0, -1}, {0, 1}};
+  for (double radius : {8.0, 20.0, 34.0, 50.0, 70.0})
+    for (const auto& d : kDirections) {
+      bool right = d[0] < 0;
+      double ax = px + d[0] * radius, ay = py + d[1] * radius + (d[1] > 0 ? kLabelHeight - 2 : d[1] == 0 ? 4 : 0);
+      if (d[0] == 0) ax = px - kLabelCharWidth * double(chars) / 2;
+      Box box = labelBox(ax, ay, chars, right && d[0] != 0);
+      if (box.left < x.pixelLo || box.right > x.pixelHi || box.top < y.pixelHi || box.bottom > y.pixelLo) continue;
+      if (std::any_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); })) continue;
+      taken.push_back(box);
+      return {ax, ay, right && d[0] != 0, radius > 8.0};
     }
+  Box box = labelBox(px + 8, py - 8, chars, false);  // nowhere free: beside the point, as before
+  taken.push_back(box);
+  return {px + 8, py - 8, false, false};
+}
+
+struct PlacedPoint {
+  double px, py;
+  size_t index;
+};
+
+std::vector<PlacedPoint> drawablePoints(const PlotSeries& s, const Axis& x, const Axis& y) {
+  std::vector<PlacedPoint> points;
+  for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
+    if (usable(s.x[i], x.log) && usable(s.y[i], y.log)) points.push_back({x.toPixel(s.x[i]), y.toPixel(s.y[i]), i});
+  return points;
+}
+
+std::string marker(double px, double py, const char* color, bool emphasised, const std::string& tooltip) {
+  std::string title = tooltip.empty() ? "" : "<title>" + escapeXml(tooltip) + "</title>";
+  if (emphasised)
+    return fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="7" fill="{}" stroke="#000" stroke-width="1.5">{}</circle>)" "\n", px, py,
+                       color, title);
+  return fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2">{}</circle>)" "\n", px, py,
+                     color, title);
+}
+
+void drawSeries(std::string& svg, const PlotSeries& s, const char* color, const Axis& x, const Axis& y) {
+  auto points = drawablePoints(s, x, y);
   if (s.lines && points.size() > 1) {
     std::string path;
-    for (const auto& [px, py] : points) path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "" : " ", px, py);
+    for (const auto& p : points) path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "" : " ", p.px, p.py);
     svg += fmt::format(R"(<polyline points="{}" fill="none" stroke="{}" stroke-width="2"/>)" "\n", path, color);
   }
-  for (size_t k = 0; k < points.size(); ++k) {
-    auto [px, py] = points[k];
-    size_t i = indices[k];
-    bool emphasised = i < s.highlighted.size() && s.highlighted[i];
-    if (emphasised)
-      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="7" fill="{}" stroke="#000" stroke-width="1.5"/>)" "\n", px, py, color);
-    else if (s.markers)
-      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n", px, py, color);
-    if (i < s.labels.size() && !s.labels[i].empty()) {
-      // Labels that would run past the plot's right edge go to the left of their point.
-      bool flip = px + 9 + 6.0 * double(s.labels[i].size()) > x.pixelHi;
-      svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="#222"{}>{}</text>)" "\n",
-                         flip ? px - 9 : px + 9, py - 7, flip ? R"( text-anchor="end")" : "", escapeXml(s.labels[i]));
-    }
+  for (const auto& p : points) {
+    bool emphasised = p.index < s.highlighted.size() && s.highlighted[p.index];
+    const std::string& tooltip = p.index < s.tooltips.size() ? s.tooltips[p.index] : std::string();
+    if (emphasised || s.markers) svg += marker(p.px, p.py, color, emphasised, tooltip);
   }
+}
+
+// Labels after every series' points, so none is placed over a point drawn later.
+void drawLabels(std::string& svg, const std::vector<PlotSeries>& series, const Axis& x, const Axis& y) {
+  std::vector<Box> taken;
+  for (const auto& s : series)
+    for (const auto& p : drawablePoints(s, x, y)) taken.push_back({p.px - 7, p.py - 7, p.px + 7, p.py + 7});
+  for (const auto& s : series)
+    for (const auto& p : drawablePoints(s, x, y)) {
+      if (p.index >= s.labels.size() || s.labels[p.index].empty()) continue;
+      const std::string& label = s.labels[p.index];
+      LabelSpot spot = placeLabel(p.px, p.py, label.size(), x, y, taken);
+      if (spot.leader) {
+        svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#999" stroke-width="0.8"/>)" "\n", p.px, p.py,
+                           spot.x, spot.y - 4);
+      }
+      svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="#222"{}>{}</text>)" "\n", spot.x, spot.y,
+                         spot.rightAligned ? R"( text-anchor="end")" : "", escapeXml(label));
+    }
 }
 
 constexpr double kLegendCharWidth = 7.0, kLegendFirstRowY = 44, kLegendRowHeight = 16;
@@ -166,17 +233,23 @@ constexpr double kLegendCharWidth = 7.0, kLegendFirstRowY = 44, kLegendRowHeight
 struct LegendEntry {
   std::string name;
   bool line = false;
+  bool marker = false;
   bool highlight = false;
   const char* color = "#000";
 };
 
 std::vector<LegendEntry> legendEntries(const std::vector<PlotSeries>& series) {
   std::vector<LegendEntry> entries;
+  // Each entry is drawn as its points are: a line for a connected series, its open marker, and the
+  // filled marker of highlighted points in the colour of the series that has them.
   for (size_t i = 0; i < series.size(); ++i)
-    entries.push_back({series[i].name, series[i].lines, false, kPalette[i % std::size(kPalette)]});
-  bool anyHighlight = false;
-  for (const auto& s : series) anyHighlight |= std::find(s.highlighted.begin(), s.highlighted.end(), true) != s.highlighted.end();
-  if (anyHighlight) entries.push_back({"Pareto-optimal", false, true, "#999"});
+    entries.push_back({series[i].name, series[i].lines, series[i].markers, false, kPalette[i % std::size(kPalette)]});
+  for (size_t i = 0; i < series.size(); ++i) {
+    const auto& h = series[i].highlighted;
+    if (std::find(h.begin(), h.end(), true) == h.end()) continue;
+    entries.push_back({"Pareto-optimal", false, false, true, kPalette[i % std::size(kPalette)]});
+    break;
+  }
   return entries;
 }
 
@@ -208,17 +281,32 @@ void drawLegend(std::string& svg, const std::vector<LegendEntry>& entries, const
   for (size_t k = 0; k < entries.size(); ++k) {
     const LegendEntry& e = entries[k];
     auto [left, rowY] = layout.positions[k];
-    if (e.highlight)
-      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="6" fill="#999" stroke="#000" stroke-width="1.5"/>)" "\n",
-                         left + 10, rowY);
-    else if (e.line)
+    if (e.line)
       svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"/>)" "\n",
                          left, rowY, left + 20, rowY, e.color);
-    else
-      svg += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="4" fill="#fff" stroke="{}" stroke-width="2"/>)" "\n",
-                         left + 10, rowY, e.color);
+    if (e.marker || e.highlight) svg += marker(left + 10, rowY, e.color, e.highlight, "");
     svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)" "\n", left + 26, rowY + 4, escapeXml(e.name));
   }
+}
+
+constexpr double kKeyRowHeight = 15;
+
+// The key under the x-axis label, in as many columns as the widest line allows.
+void drawKey(std::string& svg, const std::vector<std::string>& key, double left, double right, double top) {
+  size_t widest = 1;
+  for (const auto& line : key) widest = std::max(widest, line.size());
+  double columnWidth = kLabelCharWidth * double(widest) + 16;
+  size_t columns = std::max<size_t>(1, size_t((right - left) / columnWidth));
+  for (size_t i = 0; i < key.size(); ++i)
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11">{}</text>)" "\n", left + columnWidth * double(i % columns),
+                       top + kKeyRowHeight * double(i / columns), escapeXml(key[i]));
+}
+
+size_t keyRows(const std::vector<std::string>& key, double left, double right) {
+  size_t widest = 1;
+  for (const auto& line : key) widest = std::max(widest, line.size());
+  size_t columns = std::max<size_t>(1, size_t((right - left) / (kLabelCharWidth * double(widest) + 16)));
+  return (key.size() + columns - 1) / columns;
 }
 
 }  // namespace
@@ -230,7 +318,9 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   std::tie(y.lo, y.hi) = dataRange(series, false, options.logY, options.logX);
   x.pixelLo = kMarginLeft;
   x.pixelHi = width - kMarginRight;
-  y.pixelLo = height - kMarginBottom;  // y grows upward: low values at the bottom
+  double keyHeight = kKeyRowHeight * double(keyRows(options.key, x.pixelLo, x.pixelHi));
+  height += keyHeight;  // the key adds rows under the plot; the plot keeps its size
+  y.pixelLo = height - kMarginBottom - keyHeight;  // y grows upward: low values at the bottom
   auto legend = legendEntries(series);
   auto legendLayout = layoutLegend(legend, x);
   y.pixelHi = kMarginTop + kLegendRowHeight * double(legendLayout.rows - 1);
@@ -240,9 +330,11 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
       width, height);
   svg += fmt::format(R"(<rect width="{}" height="{}" fill="#fff"/>)" "\n", width, height);
   drawAxes(svg, x, y, options);
-  drawVerticalMarkers(svg, x, y, options.verticalMarkers);
+  drawVerticalMarkers(svg, x, y, options);
   for (size_t i = 0; i < series.size(); ++i) drawSeries(svg, series[i], kPalette[i % std::size(kPalette)], x, y);
+  drawLabels(svg, series, x, y);
   drawLegend(svg, legend, legendLayout);
+  drawKey(svg, options.key, x.pixelLo, x.pixelHi, y.pixelLo + 58);
   svg += "</svg>\n";
   return svg;
 }

@@ -12,6 +12,8 @@ struct PlotSeries {
   bool lines = true;             // connect points in order
   bool markers = true;
   std::vector<std::string> labels;  // optional per-point labels (same length as x), drawn beside points
+                                    // where they overlap nothing, else further out with a leader line
+  std::vector<std::string> tooltips;  // optional per-point hover text (an SVG <title>), same length
   std::vector<bool> highlighted;    // optional per-point emphasis (e.g. Pareto-optimal), same length
 };
 
@@ -21,6 +23,8 @@ struct PlotOptions {
   bool logX = false, logY = false;
   int width = 800, height = 500;
   std::vector<double> verticalMarkers;  // e.g. frames where history was reset
+  std::vector<std::string> verticalMarkerLabels;  // optional, one per marker: drawn up its line
+  std::vector<std::string> key;  // optional lines under the plot, e.g. "1 = high" for numbered labels
 };
 
 std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& options);

@@ -179,14 +179,21 @@ std::string sweepCsv(const std::vector<SweepRow>& rows) {
 }
 
 std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
+  // Points are numbered (names of grid configurations are long and collide); the key under the
+  // plot and each point's hover text give the configuration.
   PlotSeries all{"configurations"};
   all.lines = false;
   std::vector<const SweepRow*> front;
-  for (const auto& row : rows) {
+  PlotOptions options;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const SweepRow& row = rows[i];
     all.x.push_back(row.totalMs);
     all.y.push_back(row.rmse);
-    all.labels.push_back(row.config.name);
+    all.labels.push_back(std::to_string(i + 1));
+    all.tooltips.push_back(fmt::format("{}: {}, {:.4g} ms, RMSE {:.5g}{}", i + 1, row.config.name, row.totalMs, row.rmse,
+                                       row.pareto ? " (Pareto-optimal)" : ""));
     all.highlighted.push_back(row.pareto);
+    options.key.push_back(fmt::format("{} = {}", i + 1, row.config.name));
     if (row.pareto) front.push_back(&row);
   }
   std::sort(front.begin(), front.end(), [](const SweepRow* a, const SweepRow* b) { return a->totalMs < b->totalMs; });
@@ -196,10 +203,9 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
     pareto.x.push_back(row->totalMs);
     pareto.y.push_back(row->rmse);
   }
-  PlotOptions options;
   options.title = fmt::format("{}: RMSE vs {} reference against GPU time", info.capture, info.referenceKind);
-  options.xLabel = "GPU ms per frame (sum of pass medians)";
-  options.yLabel = "RMSE of visibility (sky masked)";
+  options.xLabel = "GPU time per frame (ms, sum of pass medians)";
+  options.yLabel = "RMSE (visibility, 0-1; sky masked)";
   options.logX = true;
   return svgPlot({pareto, all}, options);
 }

@@ -31,12 +31,14 @@ void writePerFramePlot(const std::filesystem::path& outDir, const nlohmann::json
   if (series.empty()) return;
   PlotOptions options;
   options.title = fmt::format("{}: temporal stability per frame", report["capture"].value("name", ""));
-  options.xLabel = "frame";
-  options.yLabel = "error";
+  options.xLabel = "frame (index in the capture); dashed: history reset";
+  options.yLabel = "error (visibility, 0-1; warping error: squared)";
   options.logY = true;  // warping error (MSE) sits orders of magnitude below the absolute errors
   for (const auto& f : frames)
-    if (f.value("history", "") == "reset" && f.value("reset_reason", "") != "temporal=0")
+    if (f.value("history", "") == "reset" && f.value("reset_reason", "") != "temporal=0") {
       options.verticalMarkers.push_back(f["index"].get<double>());
+      options.verticalMarkerLabels.push_back(f.value("reset_reason", "reset"));
+    }
   writeText(outDir / "temporal.svg", svgPlot(series, options));
 }
 
@@ -56,8 +58,8 @@ void writeResponsePlot(const std::filesystem::path& outDir, const nlohmann::json
   }
   PlotOptions options;
   options.title = fmt::format("response after disocclusion (history weight {:g})", w);
-  options.xLabel = "frames since disocclusion";
-  options.yLabel = "mean |O - R|";
+  options.xLabel = "frames since disocclusion (frames)";
+  options.yLabel = "mean |O - R| (visibility, 0-1)";
   writeText(outDir / "temporal_response.svg", svgPlot({measured, predicted}, options));
 }
 

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "vk/device_selection.h"
 #include "vk/vk_check.h"
 
 namespace aor {
@@ -97,6 +98,7 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
   info.index = index;
   info.name = props.properties.deviceName;
   info.driver = driver.driverName;
+  info.driverInfo = driver.driverInfo;
   info.apiVersion = fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(props.properties.apiVersion),
                                 VK_API_VERSION_MINOR(props.properties.apiVersion),
                                 VK_API_VERSION_PATCH(props.properties.apiVersion));
@@ -122,30 +124,6 @@ std::vector<DeviceInfo> describeDevices(const std::vector<VkPhysicalDevice>& dev
   std::vector<DeviceInfo> infos;
   for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
   return infos;
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s;
-}
-
-uint32_t selectDevice(const std::vector<DeviceInfo>& devices, const std::string& selector) {
-  if (devices.empty()) throw NoDeviceError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
-  if (selector.empty()) {
-    auto lavapipe = std::find_if(devices.begin(), devices.end(), [](const auto& d) { return d.isLavapipe; });
-    return lavapipe != devices.end() ? lavapipe->index : 0;
-  }
-  std::string names;
-  for (const auto& d : devices) names += fmt::format("\n  {}: {} ({})", d.index, d.name, d.driver);
-  if (std::all_of(selector.begin(), selector.end(), ::isdigit)) {
-    unsigned long index = std::stoul(selector);
-    if (index >= devices.size()) throw NoDeviceError(fmt::format("--device {}: no device with that index; devices:{}", selector, names));
-    return uint32_t(index);
-  }
-  for (const auto& d : devices)
-    if (lower(d.name).find(lower(selector)) != std::string::npos || lower(d.driver).find(lower(selector)) != std::string::npos)
-      return d.index;
-  throw NoDeviceError(fmt::format("--device {}: no device name contains it; devices:{}", selector, names));
 }
 
 // Sets queueFamily to the first compute queue family that also has timestamps, and
@@ -210,6 +188,13 @@ VkSampler createSampler(VkDevice device, VkFilter filter) {
 
 bool DeviceInfo::hasExtension(const std::string& name) const {
   return std::find(extensions.begin(), extensions.end(), name) != extensions.end();
+}
+
+std::string loaderVersion() {
+  uint32_t version = VK_API_VERSION_1_0;  // a 1.0 loader lacks vkEnumerateInstanceVersion
+  auto enumerate = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(vkGetInstanceProcAddr(nullptr, "vkEnumerateInstanceVersion"));
+  if (enumerate) enumerate(&version);
+  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(version), VK_API_VERSION_MINOR(version), VK_API_VERSION_PATCH(version));
 }
 
 std::vector<DeviceInfo> listDevices() {

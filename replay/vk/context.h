@@ -17,7 +17,8 @@ struct ContextOptions {
 struct DeviceInfo {
   uint32_t index = 0;
   std::string name;
-  std::string driver;
+  std::string driver;      // driver name, e.g. "llvmpipe"
+  std::string driverInfo;  // the driver's version text, e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
   std::string apiVersion;
   bool isLavapipe = false;
   bool isCpu = false;  // a CPU implementation (lavapipe, llvmpipe, SwiftShader): it computes on the host's cores
@@ -48,6 +49,8 @@ struct VulkanContext {
 };
 
 std::vector<DeviceInfo> listDevices();
+// The Vulkan loader's instance version, "1.3.239".
+std::string loaderVersion();
 // Runs one recorded command buffer on the context's queue and waits for it; `fence` is unsignalled
 // before and after.
 void submitAndWait(const VulkanContext& context, VkCommandBuffer cmd, VkFence fence);

@@ -2,6 +2,7 @@
 // of `compare DIR/a DIR/b`, its exit codes, and no partial output on failure. Most tests run a
 // stand-in `aoreplay` (a shell script writing a report.json with the times it is told) so the
 // verdicts are known; one runs the real binary on a small capture.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -66,9 +67,15 @@ struct AbSetup {
 
 TEST(Ab, RunsInAbbaOrderKeepsEveryRunAndFindsASlowerB) {
   AbSetup ab("ab-slower");
-  auto r = runAoreplay(ab.command(3, "--ms 1", "--ms 1.5"));
+  auto junit = ab.dir / "ab-junit.xml";
+  auto r = runAoreplay(ab.command(3, "--ms 1", "--ms 1.5", "--junit " + junit.string()));
   ASSERT_EQ(r.exitCode, 1) << r.output;
   EXPECT_EQ(readText(ab.log), "abbaabbaabba");
+  // CI's view: one JUnit case per judged name, the slower one failed; the page beside compare.json.
+  std::string xml = readText(junit);
+  EXPECT_NE(xml.find(R"(<failure message="gtao is slower)"), std::string::npos) << xml;
+  EXPECT_EQ(std::system(fmt::format("xmllint --noout '{}'", junit.string()).c_str()), 0) << xml;
+  EXPECT_NE(readText(ab.out / "compare.html").find("<section id=\"distributions\">"), std::string::npos);
   for (int i = 1; i <= 6; ++i)
     for (const char* side : {"a", "b"})
       EXPECT_TRUE(fs::exists(ab.out / side / fmt::format("{:02d}", i) / "report.json")) << side << i;

@@ -116,14 +116,16 @@ TEST(SvgPlot, IsDeterministicEscapedAndMarksHighlightedPoints) {
   EXPECT_NE(svg.find("A &amp; B"), std::string::npos);
   EXPECT_NE(svg.find("&lt;mid&gt;"), std::string::npos);
   EXPECT_NE(svg.find("Pareto-optimal"), std::string::npos);
-  // Two emphasised points (r=7) and one plain marker (r=4), plus the legend's sample marker.
+  // Two emphasised points (r=7) and one plain marker (r=4), plus the legend's markers, drawn as the
+  // points are: the series' open marker and the Pareto-optimal filled one.
   auto count = [&](const std::string& needle) {
     size_t n = 0;
     for (size_t p = svg.find(needle); p != std::string::npos; p = svg.find(needle, p + 1)) ++n;
     return n;
   };
-  EXPECT_EQ(count("r=\"7\""), 2u);
-  EXPECT_EQ(count("r=\"4\""), 1u);
+  EXPECT_EQ(count("r=\"7\""), 3u);
+  EXPECT_EQ(count("r=\"4\""), 2u);
+  EXPECT_EQ(count(R"(r="7" fill="#1f77b4")"), 3u) << "the legend's Pareto marker has the points' colour";
   EXPECT_NE(svg.find("(log scale)"), std::string::npos);
   // Empty and degenerate data still give a valid document.
   auto empty = svgPlot({}, o);

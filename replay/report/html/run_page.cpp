@@ -1,0 +1,190 @@
+#include "report/html/run_page.h"
+
+#include <optional>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "report/html/charts.h"
+#include "report/html/graph_svg.h"
+#include "report/html/html_page.h"
+#include "report/svg_plot.h"
+
+namespace aor::html {
+namespace {
+
+using json = nlohmann::json;
+
+std::string text(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
+
+std::string overviewHtml(const RunPage& page) {
+  const json& r = page.report;
+  const json& c = r["capture"];
+  auto frames = r["run"]["frames"];
+  std::vector<std::pair<std::string, std::string>> facts = {
+      {"device", fmt::format("{} (driver {}, Vulkan {})", text(r["device"]["name"]), text(r["device"]["driver"]),
+                             text(r["device"]["api_version"]))},
+      {"capture", fmt::format("{} ({}x{}, {} frames) at {}", text(c["name"]), c["width"].get<int>(), c["height"].get<int>(),
+                              c["frames"].get<int>(), text(c["path"]))},
+      {"frames replayed", fmt::format("{}:{} (half-open)", frames[0].get<int>(), frames[1].get<int>())},
+      {"technique", text(r["settings"].value("technique", json("?")))},
+      {"settings", r["settings"].dump()},
+      {"timing", fmt::format("{}, repeat {}, warm-up {}", text(r["timing"]["mode"]), r["run"]["repeat"].get<int>(),
+                             r["run"]["warmup"].get<int>())},
+      {"GPU total (median per frame)", fmt::format("{:.4g} ms (compute passes; host copies add {:.4g} ms)",
+                                                   r["gpu_ms_total_median"].get<double>(), r["gpu_ms_host_copies_median"].get<double>())},
+      {"validation", r.contains("validation") ? r["validation"].dump() : "off"},
+  };
+  std::string html = factList(facts);
+  for (const auto& line : page.summaryLines) html += "<p class=\"metric-line\">" + escape(line) + "</p>\n";
+  return html;
+}
+
+std::string passTimesHtml(const json& report) {
+  std::vector<Bar> bars;
+  for (const auto& p : report["passes"]) {
+    const json& ms = p["gpu_ms"];
+    bars.push_back({text(p["name"]), ms["median"].get<double>(), ms["min"].get<double>(), ms["max"].get<double>()});
+  }
+  return barChartSvg(bars, "GPU time per frame (ms): bar = median, whiskers = min to max over frames x repetitions");
+}
+
+// The frames where history was reset (not the no-temporal resets of every frame), with the reason.
+void markResets(const json& frames, PlotOptions& options) {
+  for (const auto& f : frames)
+    if (f.value("history", "") == "reset" && f.value("reset_reason", "") != "temporal=0") {
+      options.verticalMarkers.push_back(f["index"].get<double>());
+      options.verticalMarkerLabels.push_back("reset: " + f.value("reset_reason", "?"));
+    }
+}
+
+PlotSeries perFrame(const json& frames, const std::string& name, auto valueOf) {
+  PlotSeries s{name};
+  for (const auto& f : frames)
+    if (auto v = valueOf(f)) {
+      s.x.push_back(f["index"].get<double>());
+      s.y.push_back(*v);
+      s.tooltips.push_back(fmt::format("frame {}: {} = {:.5g}", f["index"].get<int>(), name, *v));
+    }
+  return s;
+}
+
+std::optional<double> numberAt(const json& j, std::initializer_list<const char*> path) {
+  const json* node = &j;
+  for (const char* key : path) {
+    if (!node->is_object() || !node->contains(key)) return std::nullopt;
+    node = &(*node)[key];
+  }
+  return node->is_number() ? std::optional<double>(node->get<double>()) : std::nullopt;
+}
+
+std::string frameTimesHtml(const json& report) {
+  std::vector<PlotSeries> series;
+  for (const auto& p : report["passes"]) {
+    std::string name = text(p["name"]);
+    series.push_back(perFrame(report["frames"], name, [&](const json& f) { return numberAt(f, {"gpu_ms_median", name.c_str()}); }));
+  }
+  PlotOptions options;
+  options.title = "GPU time per pass and frame (median over repetitions)";
+  options.xLabel = "frame (index in the capture)";
+  options.yLabel = "GPU time (ms)";
+  options.width = 1000;
+  options.height = 420;
+  markResets(report["frames"], options);
+  return svgPlot(series, options);
+}
+
+std::string metricsOverTimeHtml(const json& report) {
+  const json& frames = report["frames"];
+  std::vector<PlotSeries> series;
+  auto add = [&](const std::string& name, std::initializer_list<const char*> path) {
+    auto s = perFrame(frames, name, [&](const json& f) { return numberAt(f, path); });
+    if (!s.x.empty()) series.push_back(std::move(s));
+  };
+  add("RMSE vs reference", {"metrics", "error", "rmse"});
+  auto dissimilarity = perFrame(frames, "1 - SSIM vs reference", [](const json& f) -> std::optional<double> {
+    auto ssim = numberAt(f, {"metrics", "error", "ssim"});
+    return ssim ? std::optional<double>(1.0 - *ssim) : std::nullopt;
+  });
+  if (!dissimilarity.x.empty()) series.push_back(std::move(dissimilarity));
+  add("warping error (squared, previous output reprojected)", {"metrics", "temporal", "warping_error"});
+  add("derivative error |dO - dR|", {"metrics", "temporal", "derivative_error"});
+  add("abs error |O - R|", {"metrics", "temporal", "abs_error"});
+  if (series.empty()) return "<p class=\"note\">No per-frame error or temporal metric (one frame, or nothing to compare with).</p>\n";
+  PlotOptions options;
+  options.title = "error and temporal stability per frame";
+  options.xLabel = "frame (index in the capture); dashed: history reset, with its reason";
+  options.yLabel = "error (visibility, 0-1; log scale)";
+  options.logY = true;
+  options.width = 1000;
+  options.height = 460;
+  markResets(frames, options);
+  return svgPlot(series, options);
+}
+
+std::string passesHtml(const json& report) {
+  Table run{"passes-run", {"pass", "median ms", "min ms", "max ms", "timed runs"}, {}, true};
+  for (const auto& p : report["passes"]) {
+    const json& ms = p["gpu_ms"];
+    run.rows.push_back({escape(text(p["name"])), fmt::format("{:.4f}", ms["median"].get<double>()), fmt::format("{:.4f}", ms["min"].get<double>()),
+                        fmt::format("{:.4f}", ms["max"].get<double>()), std::to_string(ms["count"].get<int>())});
+  }
+  Table culled{"passes-culled", {"culled pass", "reason"}, {}, false};
+  for (const auto& c : report["culled_passes"]) culled.rows.push_back({escape(text(c["name"])), escape(text(c["reason"]))});
+  std::string html = "<h3>run</h3>\n" + run.html() + "<h3>culled</h3>\n";
+  return html + (culled.rows.empty() ? "<p class=\"note\">No pass was culled.</p>\n" : culled.html());
+}
+
+std::string graphHtml(std::string dot) {
+  // A pass chain is far longer than the page is wide: drawn top to bottom, its labels stay legible.
+  if (auto lr = dot.find("rankdir=LR"); lr != std::string::npos) dot.replace(lr, 10, "rankdir=TB");
+  std::string svg = graphSvg(dot);
+  if (!svg.empty()) return "<div class=\"graph\">" + svg + "</div>\n<p class=\"note\">Dashed grey: culled passes.</p>\n";
+  return "<pre class=\"graph\">" + escape(dot.empty() ? "(no graph recorded)" : dot) + "</pre>\n";
+}
+
+std::string bytesText(double bytes) {
+  if (bytes >= 1 << 20) return fmt::format("{:.2f} MiB", bytes / double(1 << 20));
+  if (bytes >= 1 << 10) return fmt::format("{:.1f} KiB", bytes / double(1 << 10));
+  return fmt::format("{:.0f} B", bytes);
+}
+
+std::string memoryHtml(const json& memory) {
+  std::vector<Bar> bars;
+  Table table{"memory-table", {"resource", "type", "size", "format", "bytes", "allocated", "first pass", "last pass", "memory slot", "shares memory with"}, {}, true};
+  for (const auto& r : memory["resources"]) {
+    double bytes = r.value("bytes", 0.0);
+    bool allocated = r.value("allocated", false);
+    if (allocated) bars.push_back({text(r["name"]), bytes / double(1 << 10), bytes / double(1 << 10), bytes / double(1 << 10)});
+    std::string size = r.contains("width") ? fmt::format("{}x{}", r["width"].get<int>(), r["height"].get<int>()) : "";
+    std::vector<std::string> aliases;
+    for (const auto& a : r.value("aliases", json::array())) aliases.push_back(text(a));
+    table.rows.push_back({escape(text(r["name"])), escape(r.value("type", "")), size, escape(r.value("format", "")),
+                          fmt::format("<td data-value=\"{}\">{}</td>", bytes, bytesText(bytes)), allocated ? "yes" : "no (unused)",
+                          escape(r.value("first_pass", "")), escape(r.value("last_pass", "")),
+                          r.contains("memory_slot") ? std::to_string(r["memory_slot"].get<int>()) : "",
+                          escape(fmt::format("{}", fmt::join(aliases, ", ")))});
+  }
+  std::string html = fmt::format("<p>Peak GPU memory of the graph's resources: <b>{}</b> (aliasing included; {} without it).</p>\n",
+                                 bytesText(memory.value("peak_gpu_bytes", 0.0)), bytesText(memory.value("unaliased_gpu_bytes", 0.0)));
+  if (!bars.empty()) html += barChartSvg(bars, "memory per allocated resource (KiB)");
+  return html + table.html();
+}
+
+}  // namespace
+
+std::string runPageHtml(const RunPage& page) {
+  const json& r = page.report;
+  Page html(fmt::format("aoreplay run: {} with {}", text(r["capture"]["name"]), text(r["settings"].value("technique", json("?")))));
+  html.section("overview", "Run", overviewHtml(page));
+  html.section("pass-times", "GPU time per pass", passTimesHtml(r));
+  html.section("frame-times", "GPU time per frame", frameTimesHtml(r));
+  html.section("images", "Frames: AO, reference, error, flicker", frameImagesHtml(page.frames));
+  html.section("metrics-over-time", "Error and temporal stability over time", metricsOverTimeHtml(r));
+  html.section("passes", "Passes run and culled", passesHtml(r));
+  html.section("graph", "Render graph (last frame)", graphHtml(page.graphDot));
+  html.section("memory", "Memory per resource", memoryHtml(r["memory"]));
+  return html.html();
+}
+
+}  // namespace aor::html

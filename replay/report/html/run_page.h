@@ -1,0 +1,25 @@
+#pragma once
+// report.html of `aoreplay run`: everything report.json says, drawn (README.md, "Reports"):
+// device, capture, technique and settings; per-pass GPU time (median bars with min-max whiskers)
+// and per frame; selected frames' AO beside the reference with the error heat map and the change
+// from the previous frame; error and temporal metrics over time with history resets marked and
+// labelled; the passes run and culled (with the reason); the graph; memory per resource.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "report/html/frame_images.h"
+
+namespace aor::html {
+
+struct RunPage {
+  const nlohmann::json& report;    // as written to report.json
+  std::vector<FrameImages> frames;  // framesToShow()'s frames
+  std::string graphDot;             // graph::toDot of the run's last frame
+  std::vector<std::string> summaryLines;  // the terminal's error and temporal lines
+};
+
+std::string runPageHtml(const RunPage& page);
+
+}  // namespace aor::html
