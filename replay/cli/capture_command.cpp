@@ -32,8 +32,9 @@ int captureCommand(CaptureArgs& args) {
     if (tty) fmt::print(stderr, "\rgenerating frame {}/{}{}", done, total, done == total ? "\n" : "");
   };
   gen::generateCapture(o, args.out);
-  fmt::print("capture: {} ({} {}x{}, {} frames, path {}, reference spp {})\n", args.out, o.scene, o.width, o.height,
-             o.frames, o.path, o.referenceSpp);
+  fmt::print("capture: {} ({} {}x{}, {} frames, path {}, reference spp {}{})\n", args.out, o.scene, o.width, o.height,
+             o.frames, o.path, o.referenceSpp,
+             o.depth2 ? fmt::format(", depth2 separation {}", o.depth2Separation) : std::string());
   return kExitOk;
 }
 
@@ -53,6 +54,10 @@ void registerCaptureCommand(CLI::App& app) {
   cmd->add_flag("--reversed-z", args->options.reversedZ, "reversed depth (near 1, far 0)");
   cmd->add_flag("--infinite-far", args->options.infiniteFar, "infinite far plane");
   cmd->add_flag("--no-normals", args->noNormals, "depth-only capture (normals reconstructed on replay)");
+  cmd->add_flag("--depth2", args->options.depth2, "also write a second depth layer (depth2), by depth peeling");
+  cmd->add_option("--depth2-separation", args->options.depth2Separation,
+                  "world units a second-layer surface lies at least behind layer 0 along the ray")
+      ->capture_default_str();
   cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0));
   cmd->add_option("--seed", args->options.seed, "seed of the reference sampling");
   handlers()["capture"] = [args] { return captureCommand(*args); };
