@@ -25,3 +25,6 @@ gen thin-strafe thin --size 320x180 --frames 8 --path strafe --reference-spp 64
 gen boxes-static boxes --size 160x90 --frames 16 --path static --reference-spp 64
 gen boxes-strafe boxes --size 160x90 --frames 16 --path strafe --reference-spp 64
 gen boxes-cut boxes --size 160x90 --frames 16 --path cut --reference-spp 64
+# A second depth layer (issue "SAO, and deep G-buffer AO from a second depth layer"): the thin
+# occluders with depth2 (depth peeling, 1 cm minimum separation), 2 frames of the strafe.
+gen thin-depth2 thin --size 320x180 --frames 2 --path strafe --reference-spp 64 --depth2
