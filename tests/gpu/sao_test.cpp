@@ -107,6 +107,40 @@ TEST(Sao, BothPathsReplayBitIdenticallyTwiceAndDiffer) {
   EXPECT_FALSE(bitIdentical(outputs[0], outputs[1])) << "the second layer changed nothing";
 }
 
+// The seed's steps as debug views: both layers' camera-space Z, the pyramid's levels at their
+// sizes, and the AO before, between and after the blur legs.
+TEST(Sao, DebugViewsShowEveryStep) {
+  fs::path out = scratchDir("sao-debug") / "out";
+  std::string views;
+  for (const char* v : {"csz", "csz_mip1", "csz_mip2", "csz_mip3", "csz_mip4", "ao_raw", "ao_blur_h", "ao"})
+    views += fmt::format(" --debug {}", v);
+  auto r = runAoreplay(fmt::format("run {} --technique sao --frames 0:1{} --out {}", thinDepth2().string(), views, out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto csz = readExrHeader(out / "debug" / "csz" / "0000.exr");
+  EXPECT_EQ(csz.width, 320);
+  EXPECT_EQ(csz.channels.size(), 2u) << "layer 0 and layer 1";
+  for (int level = 1; level <= 4; ++level) {
+    auto mip = readExrHeader(out / "debug" / fmt::format("csz_mip{}", level) / "0000.exr");
+    EXPECT_EQ(mip.width, 320 >> level);
+    EXPECT_EQ(mip.height, 180 >> level);
+  }
+  // Rotated-grid subsampling keeps real depths: level 1's texel (0, 0) is level 0's (1, 1).
+  auto level0 = readExrChannels(out / "debug" / "csz" / "0000.exr", {csz.channels.begin()->first});
+  auto level1 = readExrChannels(out / "debug" / "csz_mip1" / "0000.exr", {csz.channels.begin()->first});
+  EXPECT_EQ(level1.begin()->second.at(0), level0.begin()->second.at(1 * 320 + 1));
+  // Each blur leg smooths: the raw AO varies most between neighbours.
+  auto roughness = [&](const char* view) {
+    auto header = readExrHeader(out / "debug" / view / "0000.exr");
+    auto plane = readExrChannels(out / "debug" / view / "0000.exr", {header.channels.begin()->first}).begin()->second;
+    double sum = 0;
+    for (int y = 0; y < 180; ++y)
+      for (int x = 1; x < 320; ++x) sum += std::abs(plane[y * 320 + x] - plane[y * 320 + x - 1]);
+    return sum;
+  };
+  EXPECT_GT(roughness("ao_raw"), roughness("ao_blur_h"));
+  EXPECT_GT(roughness("ao_blur_h"), roughness("ao"));
+}
+
 struct HaloFigures {
   int64_t pixels = 0, bandPixels = 0;
   double rmse[2] = {0, 0}, bandRmse[2] = {0, 0}, bandBias[2] = {0, 0};  // [single, dual]
