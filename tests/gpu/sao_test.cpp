@@ -93,6 +93,26 @@ TEST(Sao, TheShippedThinCaptureRunsBothPathsValidationClean) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("validation: 0 messages"), std::string::npos) << r.output;
   EXPECT_EQ((*resourceNamed(reportOf(out), "csz"))["format"], "R32G32_SFLOAT");
+  // With the shared temporal block after the blur: frame 1 blends frame 0's history.
+  out = scratchDir("sao-temporal") / "out";
+  r = runAoreplay(fmt::format("run {} --technique sao --set temporal=0.5 --validate --no-images --out {}",
+                              thinDepth2().string(), out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("validation: 0 messages"), std::string::npos) << r.output;
+  EXPECT_EQ(reportOf(out)["frames"][1]["history"], "valid");
+}
+
+TEST(Sao, DualLayerOutputsAreBitIdenticalWhateverTheLavapipeThreadCount) {
+  auto runWith = [&](int threads) {
+    fs::path out = scratchDir(fmt::format("sao-threads-{}", threads)) / "out";
+    auto r = runAoreplay(fmt::format("run {} --technique sao --set dual_layer=1 --out {}", thinDepth2().string(), out.string()),
+                         fmt::format("LP_NUM_THREADS={}", threads));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return out;
+  };
+  fs::path one = runWith(1), four = runWith(4);
+  for (const char* frame : {"0000.exr", "0001.exr"})
+    EXPECT_EQ(readText(one / "ao" / frame), readText(four / "ao" / frame)) << frame;
 }
 
 TEST(Sao, BothPathsReplayBitIdenticallyTwiceAndDiffer) {
