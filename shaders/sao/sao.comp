@@ -29,9 +29,9 @@ float tapObscurance(ivec2 centre, vec3 c, vec3 n, float diskRadius, int i, float
   int mip = saoMipLevel(ssR, pc.maxMip);
   ivec2 texel = min(tap >> mip, textureSize(csz, mip) - ivec2(1));
   vec2 z = texelFetch(csz, texel, mip).rg;
-  float obscurance = z.x > 0.0 ? saoTapObscurance(viewPosition(tap, z.x) - c, n, pc.radius2, pc.bias) : 0.0;
+  float obscurance = z.x > 0.0 ? saoTapObscurance(viewPosition(tap, z.x) - c, n, pc.invRadius2, pc.bias) : 0.0;
   if (kDualLayer && z.y > 0.0)
-    obscurance = max(obscurance, saoTapObscurance(viewPosition(tap, z.y) - c, n, pc.radius2, pc.bias));
+    obscurance = max(obscurance, saoTapObscurance(viewPosition(tap, z.y) - c, n, pc.invRadius2, pc.bias));
   return obscurance;
 }
 

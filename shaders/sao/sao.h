@@ -47,9 +47,9 @@ struct SaoConstants {
   vec2 invSize;
   ivec2 size;
   float radius;           // world units
-  float radius2;
+  float invRadius2;       // 1 / r^2
   float bias;             // beta, world units
-  float intensityFactor;  // 5 sigma / (r^6 s)
+  float intensityFactor;  // 5 sigma / s (the r^6 is in saoTapObscurance's falloff)
   float projScale;        // pixels covered by one unit at distance 1
   float spiralTurns;      // tau
   float rotationOffset;   // added to every pixel's rotation (frame-dependent only with temporal > 0)
@@ -94,11 +94,12 @@ AOR_FUNC ivec2 saoRotatedGridSource(ivec2 t, ivec2 sourceSize) {
 }
 
 // One tap's obscurance: v from the centre to the tap, n the centre's unit normal. The paper's
-// falloff (r^2 - v.v)^3 and its bias: max(0, (v.n - beta) / (v.v + epsilon)).
-AOR_FUNC float saoTapObscurance(vec3 v, vec3 n, float radius2, float bias) {
+// falloff (r^2 - v.v)^3 / r^6, written as (1 - v.v / r^2)^3 so that no power of the radius is
+// formed (r^6 overflows a float from r ~ 2.6e6), and its bias: max(0, (v.n - beta) / (v.v + epsilon)).
+AOR_FUNC float saoTapObscurance(vec3 v, vec3 n, float invRadius2, float bias) {
   float vv = dot(v, v);
   float vn = dot(v, n);
-  float f = max(radius2 - vv, 0.0f);
+  float f = max(1.0f - vv * invRadius2, 0.0f);
   return f * f * f * max((vn - bias) / (kSaoEpsilon + vv), 0.0f);
 }
 

@@ -127,6 +127,18 @@ TEST(Sao, BothPathsReplayBitIdenticallyTwiceAndDiffer) {
   EXPECT_FALSE(bitIdentical(outputs[0], outputs[1])) << "the second layer changed nothing";
 }
 
+// The radius's whole range gives finite visibility in [0, 1]: the estimator forms no power of it.
+TEST(Sao, ExtremeRadiiStayFiniteAndBounded) {
+  for (const char* radius : {"radius=1e-06", "radius=10000000"}) {
+    auto run = replayWithSettings(thinDepth2(), "sao", {radius, "dual_layer=1"}, 0, 1);
+    for (float v : run.frames.at(0).visibility) {
+      ASSERT_TRUE(std::isfinite(v)) << radius;
+      ASSERT_GE(v, 0.0f) << radius;
+      ASSERT_LE(v, 1.0f) << radius;
+    }
+  }
+}
+
 // The seed's steps as debug views: both layers' camera-space Z, the pyramid's levels at their
 // sizes, and the AO before, between and after the blur legs.
 TEST(Sao, DebugViewsShowEveryStep) {

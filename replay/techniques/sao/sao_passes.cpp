@@ -100,9 +100,9 @@ graph::ResourceId addSaoPass(FrameBuilder& frame, const SaoSettings& s, bool dua
   c.invSize = {1.0f / float(cam.width), 1.0f / float(cam.height)};
   c.size = {cam.width, cam.height};
   c.radius = s.radius;
-  c.radius2 = s.radius * s.radius;
+  c.invRadius2 = 1.0f / (s.radius * s.radius);
   c.bias = s.bias;
-  c.intensityFactor = shader::kSaoNormalisation * s.intensity / (std::pow(s.radius, 6.0f) * float(s.samples));
+  c.intensityFactor = shader::kSaoNormalisation * s.intensity / float(s.samples);
   c.projScale = params.pixelsPerUnit;
   c.spiralTurns = float(s.spiralTurns);
   // A still spiral unless temporal accumulation can average rotations across frames.
