@@ -37,7 +37,7 @@ void validateOptions(const GeneratorOptions& o) {
     fail("reference_spp", "must be in 0..1048576, got " + std::to_string(o.referenceSpp));
   if (o.radius && !(std::isfinite(*o.radius) && *o.radius > 0.0f))
     fail("radius", "AO radius must be a positive finite number of world units, got " + std::to_string(*o.radius));
-  if (o.depth2 && !(std::isfinite(o.depth2Separation) && o.depth2Separation > 0.0f && o.depth2Separation <= 1000.0f))
+  if (o.depth2 && !(std::isfinite(o.depth2Separation) && o.depth2Separation > 0.0 && o.depth2Separation <= 1000.0))
     fail("depth2_separation", "must be a positive finite number of world units up to 1000, got " + std::to_string(o.depth2Separation));
   if (!(o.verticalFovDegrees >= 0.5f && o.verticalFovDegrees <= 179.0f))
     fail("fov", "vertical field of view must be in [0.5, 179] degrees, got " + std::to_string(o.verticalFovDegrees));

@@ -25,7 +25,7 @@ struct GeneratorOptions {
   // Second depth layer (`depth2`): per pixel the nearest surface at least depth2Separation world
   // units behind layer 0 along the pixel's ray, found by peeling (tracing on from there).
   bool depth2 = false;
-  float depth2Separation = 0.01f;  // the deep G-buffer papers' minimum separation for AO
+  double depth2Separation = 0.01;  // world units; the deep G-buffer papers' minimum separation for AO
   float verticalFovDegrees = 60.0f;
   uint64_t seed = 1;
   std::function<void(int done, int total)> progress;  // called from the calling thread only

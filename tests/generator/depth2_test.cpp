@@ -128,10 +128,10 @@ TEST(Depth2, TheSeparationIsChecked) {
   aor::gen::GeneratorOptions o;
   o.scene = "thin";
   o.depth2 = true;
-  for (float bad : {0.0f, -0.01f, std::nanf(""), 1e9f}) {
+  for (double bad : {0.0, -0.01, std::nan(""), 1e9}) {
     o.depth2Separation = bad;
     EXPECT_THROW(validateOptions(o), aor::InputError) << bad;
   }
-  o.depth2Separation = 0.01f;
+  o.depth2Separation = 0.01;
   EXPECT_NO_THROW(validateOptions(o));
 }
