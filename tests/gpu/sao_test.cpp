@@ -71,6 +71,20 @@ TEST(Sao, DualLayerOnACaptureWithoutOneExitsTwoNamingIt) {
   EXPECT_FALSE(fs::exists(out / "report.json"));
 }
 
+TEST(Depth2Capture, TheSeparationIsCheckedAndNeedsTheSecondLayer) {
+  fs::path out = scratchDir("depth2-cli") / "capture";
+  auto r = runAoreplay(fmt::format("capture thin --size 32x18 --frames 1 --depth2-separation 0.05 --out {}", out.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--depth2-separation"), std::string::npos) << r.output;
+  r = runAoreplay(fmt::format("capture thin --size 32x18 --frames 1 --depth2 --depth2-separation 0 --out {}", out.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("depth2_separation"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  r = runAoreplay(fmt::format("capture thin --size 32x18 --frames 1 --depth2 --out {}", out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(loadCapture(out).hasDepth2);
+}
+
 TEST(Sao, TheShippedThinCaptureRunsBothPathsValidationClean) {
   for (const char* dual : {"0", "1"}) {
     fs::path out = scratchDir(fmt::format("sao-validate-{}", dual)) / "out";
