@@ -19,11 +19,12 @@ glm::uvec2 levelSize(glm::uvec2 size, uint32_t level) { return {std::max(1u, siz
 
 }  // namespace
 
+const char* const kSaoNoSecondLayer =
+    "dual_layer=1 needs a second depth layer (a depth2 channel) and this capture has none; "
+    "generate one with `aoreplay capture --depth2`, or use dual_layer=0 or auto";
+
 bool saoUsesSecondLayer(const SaoSettings& s, const CaptureLayout& capture) {
-  if (s.dualLayer == SaoDualLayer::On && !capture.depth2)
-    throw InputError("", std::nullopt, "dual_layer",
-                     "dual_layer=1 needs a second depth layer (depth2) and the capture has none; "
-                     "generate one with `aoreplay capture --depth2`, or use dual_layer=0 or auto");
+  if (s.dualLayer == SaoDualLayer::On && !capture.depth2) throw InputError("", std::nullopt, "dual_layer", kSaoNoSecondLayer);
   return s.dualLayer == SaoDualLayer::On || (s.dualLayer == SaoDualLayer::Auto && capture.depth2);
 }
 

@@ -41,6 +41,7 @@ inline constexpr int saoSpiralTurnsFor(int samples) { return kSaoSpiralTurnsTabl
 // Whether the run takes the second layer: dual_layer=1, or auto on a capture that has one.
 // dual_layer=1 without one throws InputError (checked before the replay too: checkCapture).
 bool saoUsesSecondLayer(const SaoSettings& settings, const CaptureLayout& capture);
+extern const char* const kSaoNoSecondLayer;  // what both say
 
 // The CSZ pyramid's format: R16F (R32F with csz32=1), RG with the second layer.
 VkFormat saoCszFormat(bool csz32, bool dualLayer);

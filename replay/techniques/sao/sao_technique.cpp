@@ -45,9 +45,7 @@ void addSaoPipeline(FrameBuilder& frame, const Settings& settings) {
 void checkSaoCapture(const Settings& settings, const Capture& capture) {
   SaoSettings s = saoSettings(settings);
   if (s.dualLayer == SaoDualLayer::On && !capture.hasDepth2)
-    throw InputError((capture.folder / "capture.json").string(), std::nullopt, kDualLayer,
-                     "dual_layer=1 needs a second depth layer (a depth2 channel) and this capture has none; "
-                     "generate one with `aoreplay capture --depth2`, or use dual_layer=0 or auto");
+    throw InputError((capture.folder / "capture.json").string(), std::nullopt, kDualLayer, kSaoNoSecondLayer);
 }
 
 Preset samplesPreset(const char* name, int samples) {
