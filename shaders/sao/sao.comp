@@ -9,10 +9,11 @@
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 layout(constant_id = kSaoSpecSamples) const int kSamples = 19;
 layout(constant_id = kSaoSpecDualLayer) const bool kDualLayer = false;
+layout(constant_id = kSaoSpecWorldNormals) const bool kWorldNormals = true;
 
 layout(push_constant, scalar) uniform Push { SaoConstants pc; };
 layout(set = 0, binding = 0) uniform sampler2D csz;                      // every level; R layer 0, G layer 1
-layout(set = 0, binding = 1, rgba16f) uniform readonly image2D normals;  // view space
+layout(set = 0, binding = 1, rgba16f) uniform readonly image2D normals;  // world space (captured) or view space (reconstructed)
 layout(set = 0, binding = 2) uniform writeonly image2D aoOut;            // R16F visibility
 
 vec3 viewPosition(ivec2 pixel, float z) {
@@ -44,7 +45,9 @@ void main() {
     return;
   }
   vec3 c = viewPosition(pixel, z);
-  vec3 n = normalize(imageLoad(normals, pixel).xyz);
+  vec3 n = imageLoad(normals, pixel).xyz;
+  if (kWorldNormals) n = mat3(pc.worldToView0.xyz, pc.worldToView1.xyz, pc.worldToView2.xyz) * n;
+  n = normalize(n);
   float diskRadius = pc.projScale * pc.radius / z;
   float spin = saoPixelAngle(pixel) + pc.rotationOffset;
   float sum = 0.0;

@@ -9,6 +9,7 @@
 // Specialisation constant ids of sao.comp.
 AOR_CONST int kSaoSpecSamples = 0;    // taps per pixel: the loop's count
 AOR_CONST int kSaoSpecDualLayer = 1;  // each tap also reads layer 1 (csz.g)
+AOR_CONST int kSaoSpecWorldNormals = 2;  // the capture's world-space normals, rotated here (else view space)
 
 // Camera-space Z pyramid: level 0 and four rotated-grid levels below it (the paper's 5 levels;
 // deeper ones gain nothing at these radii, see sao/README.md).
@@ -42,6 +43,9 @@ struct SaoMinifyConstants {
 };
 
 struct SaoConstants {
+  vec4 worldToView0;      // columns of the world->view rotation, for the capture's normals
+  vec4 worldToView1;
+  vec4 worldToView2;
   vec2 ndcToViewMul;
   vec2 ndcToViewAdd;
   vec2 invSize;

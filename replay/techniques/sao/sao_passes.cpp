@@ -96,6 +96,9 @@ graph::ResourceId addSaoPass(FrameBuilder& frame, const SaoSettings& s, bool dua
   const auto& cam = frame.camera();
   auto params = projectionParams(cam.projection, cam.width, cam.height);
   shader::SaoConstants c{};
+  c.worldToView0 = glm::vec4(glm::vec3(cam.view[0]), 0.0f);
+  c.worldToView1 = glm::vec4(glm::vec3(cam.view[1]), 0.0f);
+  c.worldToView2 = glm::vec4(glm::vec3(cam.view[2]), 0.0f);
   c.ndcToViewMul = params.ndcToViewMul;
   c.ndcToViewAdd = params.ndcToViewAdd;
   c.invSize = {1.0f / float(cam.width), 1.0f / float(cam.height)};
@@ -111,9 +114,13 @@ graph::ResourceId addSaoPass(FrameBuilder& frame, const SaoSettings& s, bool dua
   c.maxMip = int(frame.graph().resources()[csz].desc.mipLevels) - 1;
   auto size = frame.size();
   auto ao = frame.graph().createImage("ao_raw", {size.x, size.y, VK_FORMAT_R16_SFLOAT});
-  graph::ResourceId normals = frame.viewNormals();
+  // The capture's normals are rotated in the pass itself (no view_normals image); without them,
+  // the front's reconstructed ones, already in view space.
+  bool worldNormals = frame.worldNormals() != graph::kNoResource;
+  graph::ResourceId normals = worldNormals ? frame.worldNormals() : frame.reconstructedNormals();
   std::vector<SpecializationValue> specialization{{uint32_t(shader::kSaoSpecSamples), uint32_t(s.samples)},
-                                                  {uint32_t(shader::kSaoSpecDualLayer), dualLayer ? 1u : 0u}};
+                                                  {uint32_t(shader::kSaoSpecDualLayer), dualLayer ? 1u : 0u},
+                                                  {uint32_t(shader::kSaoSpecWorldNormals), worldNormals ? 1u : 0u}};
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
       "sao",
