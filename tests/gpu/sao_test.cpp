@@ -61,6 +61,18 @@ TEST(Sao, WithoutASecondLayerNothingOfOneIsDeclared) {
   EXPECT_EQ(r.output.find("depth2"), std::string::npos) << r.output;
 }
 
+TEST(Sao, ADepthOnlyCaptureUsesTheFrontsReconstructedNormals) {
+  auto capture = generatedCapture("thin", "strafe", 64, 36, 2, /*normals=*/false);
+  fs::path out = scratchDir("sao-depth-only") / "out";
+  auto r = runAoreplay(fmt::format("run {} --technique sao --validate --no-images --out {}", capture.string(), out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("validation: 0 messages"), std::string::npos) << r.output;
+  json report = reportOf(out);
+  const json* normals = resourceNamed(report, "normals_reconstructed");
+  ASSERT_NE(normals, nullptr);
+  EXPECT_EQ((*normals)["allocated"], true);
+}
+
 TEST(Sao, DualLayerOnACaptureWithoutOneExitsTwoNamingIt) {
   auto capture = generatedCapture("thin", "strafe", 64, 36, 2);
   fs::path out = scratchDir("sao-dual-refused") / "out";
