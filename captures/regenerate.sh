@@ -25,3 +25,9 @@ gen thin-strafe thin --size 320x180 --frames 8 --path strafe --reference-spp 64
 gen boxes-static boxes --size 160x90 --frames 16 --path static --reference-spp 64
 gen boxes-strafe boxes --size 160x90 --frames 16 --path strafe --reference-spp 64
 gen boxes-cut boxes --size 160x90 --frames 16 --path cut --reference-spp 64
+# A second depth layer (issue "SAO, and deep G-buffer AO from a second depth layer"): the thin
+# occluders with depth2 (depth peeling, 1 cm minimum separation), 2 frames of the strafe.
+gen thin-depth2 thin --size 320x180 --frames 2 --path strafe --reference-spp 64 --depth2
+# The same with a 5 cm separation, more than the 4 cm poles and 2 cm slats are thick: their second
+# layer is what lies behind them rather than their back faces (replay/techniques/sao/README.md).
+gen thin-depth2-5cm thin --size 320x180 --frames 2 --path strafe --reference-spp 64 --depth2 --depth2-separation 0.05

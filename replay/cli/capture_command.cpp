@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "options/progress.h"
@@ -21,6 +22,7 @@ struct CaptureArgs {
   std::string size = "320x180";
   float radius = 0.0f;
   bool noNormals = false;
+  CLI::Option* separation = nullptr;  // --depth2-separation, to tell it was given
 };
 
 int captureCommand(CaptureArgs& args) {
@@ -28,12 +30,16 @@ int captureCommand(CaptureArgs& args) {
   std::tie(o.width, o.height) = parseSize(args.size, "--size");
   if (args.radius > 0.0f) o.radius = args.radius;
   o.writeNormals = !args.noNormals;
+  // A separation without a second layer would be silently ignored.
+  if (args.separation->count() > 0 && !o.depth2)
+    throw InputError("", std::nullopt, "--depth2-separation", "applies to the second depth layer; add --depth2");
   // A bar on a terminal, a line every few seconds off one (options/progress.h): ray-traced
   // references take seconds a frame.
   o.progress = progressCallback("capture", "frames");
   gen::generateCapture(o, args.out);
-  fmt::print("capture: {} ({} {}x{}, {} frames, path {}, reference spp {})\n", args.out, o.scene, o.width, o.height,
-             o.frames, o.path, o.referenceSpp);
+  fmt::print("capture: {} ({} {}x{}, {} frames, path {}, reference spp {}{})\n", args.out, o.scene, o.width, o.height,
+             o.frames, o.path, o.referenceSpp,
+             o.depth2 ? fmt::format(", depth2 separation {}", o.depth2Separation) : std::string());
   return kExitOk;
 }
 
@@ -54,6 +60,10 @@ void registerCaptureCommand(CLI::App& app) {
   cmd->add_flag("--reversed-z", args->options.reversedZ, "reversed depth (near 1, far 0)");
   cmd->add_flag("--infinite-far", args->options.infiniteFar, "infinite far plane");
   cmd->add_flag("--no-normals", args->noNormals, "depth-only capture (normals reconstructed on replay)");
+  cmd->add_flag("--depth2", args->options.depth2, "also write a second depth layer (depth2), by depth peeling");
+  args->separation = cmd->add_option("--depth2-separation", args->options.depth2Separation,
+                   "world units a second-layer surface lies at least behind layer 0 along the ray")
+      ->capture_default_str();
   cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0))->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "seed of the reference sampling")->capture_default_str();
   handlers()["capture"] = [args] { return captureCommand(*args); };

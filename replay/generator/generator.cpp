@@ -37,6 +37,8 @@ void validateOptions(const GeneratorOptions& o) {
     fail("reference_spp", "must be in 0..1048576, got " + std::to_string(o.referenceSpp));
   if (o.radius && !(std::isfinite(*o.radius) && *o.radius > 0.0f))
     fail("radius", "AO radius must be a positive finite number of world units, got " + std::to_string(*o.radius));
+  if (o.depth2 && !(std::isfinite(o.depth2Separation) && o.depth2Separation > 0.0 && o.depth2Separation <= 1000.0))
+    fail("depth2_separation", "must be a positive finite number of world units up to 1000, got " + std::to_string(o.depth2Separation));
   if (!(o.verticalFovDegrees >= 0.5f && o.verticalFovDegrees <= 179.0f))
     fail("fov", "vertical field of view must be in [0.5, 179] degrees, got " + std::to_string(o.verticalFovDegrees));
 }
@@ -56,6 +58,11 @@ nlohmann::json sceneMetadata(const SceneInfo& scene, const GeneratorOptions& o, 
       {"vertical_fov_degrees", o.verticalFovDegrees},
       {"seed", o.seed},
   };
+  // Only captures with a second layer name it, so every other capture's capture.json is unchanged.
+  if (o.depth2) {
+    options["depth2"] = true;
+    options["depth2_separation"] = o.depth2Separation;
+  }
   nlohmann::json generator = {
       {"tool", "aoreplay capture"},
       {"version", 1},
@@ -69,6 +76,9 @@ nlohmann::json sceneMetadata(const SceneInfo& scene, const GeneratorOptions& o, 
        "rays from p + n*1e-4*max(1, camera distance), tfar = ao_radius, binary visibility"},
       {"sky", "depth = far value (1 standard, 0 reversed), normal (0,0,0), reference 1"},
   };
+  if (o.depth2)
+    generator["depth2"] = "depth peeling along each pixel's ray: the first surface at least depth2_separation world units "
+                          "beyond layer 0's hit (two-sided surfaces: a back face counts); sky where there is none";
   nlohmann::json j = {
       {"name", scene.name},
       {"ao_radius", radius},
@@ -99,6 +109,8 @@ void generateCapture(const GeneratorOptions& options, const std::filesystem::pat
   settings.radius = radius;
   settings.reversedZ = options.reversedZ;
   settings.writeNormals = options.writeNormals;
+  settings.depth2 = options.depth2;
+  settings.depth2Separation = options.depth2Separation;
   settings.seed = options.seed;
 
   std::vector<CaptureFrameData> frames;

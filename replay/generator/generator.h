@@ -22,6 +22,10 @@ struct GeneratorOptions {
   bool reversedZ = false;       // reversed depth (near = 1, far = 0)
   bool infiniteFar = false;     // infinite far plane
   bool writeNormals = true;     // false: depth-only capture (normals reconstructed on replay)
+  // Second depth layer (`depth2`): per pixel the nearest surface at least depth2Separation world
+  // units behind layer 0 along the pixel's ray, found by peeling (tracing on from there).
+  bool depth2 = false;
+  double depth2Separation = 0.01;  // world units; the deep G-buffer papers' minimum separation for AO
   float verticalFovDegrees = 60.0f;
   uint64_t seed = 1;
   std::function<void(int done, int total)> progress;  // called from the calling thread only

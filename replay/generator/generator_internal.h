@@ -113,6 +113,8 @@ struct RenderSettings {
   double radius = 1.0;
   bool reversedZ = false;
   bool writeNormals = true;
+  bool depth2 = false;            // also write the second layer (GeneratorOptions::depth2)
+  double depth2Separation = 0.01;
   uint64_t seed = 1;
   int threads = 0;  // 0: std::thread::hardware_concurrency()
 };
@@ -126,7 +128,9 @@ struct PixelRay {
 PixelRay pixelRay(const glm::mat4& view, const glm::mat4& projection, bool reversedZ, int x, int y,
                   int width, int height);
 // G-buffer (+ reference when referenceSpp > 0) of one frame. Sky (and geometry beyond a finite far
-// plane): depth 1 (standard) / 0 (reversed), normal (0,0,0), visibility 1.
+// plane): depth 1 (standard) / 0 (reversed), normal (0,0,0), visibility 1. With settings.depth2
+// also `depth2`: the first hit at least depth2Separation beyond layer 0's along the same ray (sky
+// where there is none, or no layer 0).
 CaptureFrameData renderFrame(const RayScene& scene, const FrameCamera& camera,
                              const RenderSettings& settings, int frameIndex);
 

@@ -5,6 +5,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <glm/geometric.hpp>
@@ -139,20 +140,36 @@ CaptureFrameData renderFrame(const RayScene& scene, const FrameCamera& camera, c
   out.gbuffer.height = H;
   out.gbuffer.depth.assign(count, s.reversedZ ? 0.0f : 1.0f);
   if (s.writeNormals) out.gbuffer.normals.assign(count * 3, 0.0f);
+  if (s.depth2) out.gbuffer.depth2.assign(count, s.reversedZ ? 0.0f : 1.0f);
   std::vector<float> reference;
   if (s.referenceSpp > 0) reference.assign(count, 1.0f);
 
   const RayGenerator gen(camera.view, camera.projection, s.reversedZ, W, H);
+  // Depth as the attachment stores it, or nothing beyond a finite far plane (which a rasteriser
+  // would clip: the cleared sky value stays).
+  auto storedDepth = [&](const dvec3& position) -> std::optional<float> {
+    const double depth = gen.depth(position);
+    if (s.reversedZ ? !(depth >= 0.0) : !(depth <= 1.0)) return std::nullopt;
+    return static_cast<float>(std::clamp(depth, 0.0, 1.0));
+  };
   auto shadeRow = [&](int y) {
     for (int x = 0; x < W; ++x) {
       const size_t i = static_cast<size_t>(y) * W + x;
       const PixelRay ray = gen.ray(x, y);
       const auto hit = scene.intersect(ray.origin, ray.direction, ray.tnear, std::numeric_limits<double>::infinity());
       if (!hit) continue;
-      const double depth = gen.depth(hit->position);
-      // Beyond a finite far plane the rasteriser would clip: keep the cleared (sky) value.
-      if (s.reversedZ ? !(depth >= 0.0) : !(depth <= 1.0)) continue;
-      out.gbuffer.depth[i] = static_cast<float>(std::clamp(depth, 0.0, 1.0));
+      const auto depth = storedDepth(hit->position);
+      if (!depth) continue;
+      out.gbuffer.depth[i] = *depth;
+      if (s.depth2) {
+        // Depth peeling along the same ray: the next surface at least the separation further on.
+        // t is in world units (the direction is a unit vector).
+        const auto second = scene.intersect(ray.origin, ray.direction, hit->t + s.depth2Separation,
+                                            std::numeric_limits<double>::infinity());
+        if (second) {
+          if (const auto depth2 = storedDepth(second->position)) out.gbuffer.depth2[i] = *depth2;
+        }
+      }
       if (s.writeNormals) {
         out.gbuffer.normals[3 * i + 0] = static_cast<float>(hit->normal.x);
         out.gbuffer.normals[3 * i + 1] = static_cast<float>(hit->normal.y);

@@ -72,6 +72,9 @@ INSTANTIATE_TEST_SUITE_P(Registered, EveryTechnique, ::testing::ValuesIn(techniq
 const std::map<std::string, std::vector<std::string>> kExpectedKeys = {
     {"gtao", {"radius", "slices", "steps", "falloff", "power", "thin", "spatial", "temporal", "bent", "half_res"}},
     {"reference", {"radius", "falloff", "power", "thin", "bent"}},
+    {"sao",
+     {"radius", "bias", "intensity", "samples", "spiral_turns", "blur_radius", "blur_step", "edge_sharpness", "csz32",
+      "dual_layer", "temporal"}},
 };
 
 TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
@@ -136,7 +139,7 @@ TEST(TechniqueKeys, ReportSettingsAndSweepColumnsHoldEveryKey) {
     EXPECT_EQ(settings.size(), keys.size() + 1) << settings.dump() << " (the keys and `technique`)";
   }
   fs::path sweep = scratchDir("keys-sweep") / "out";
-  auto r = runAoreplay(fmt::format("sweep {} --presets low --grid technique=gtao,reference --repeat 1 --warmup 0 --out {}",
+  auto r = runAoreplay(fmt::format("sweep {} --presets low --grid technique=gtao,reference,sao --repeat 1 --warmup 0 --out {}",
                                    capture.string(), sweep.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::string csv = readText(sweep / "sweep.csv");

@@ -1,0 +1,121 @@
+// Seed 004: the deep G-buffer demo's AO frame, as a technique module: camera-space Z of both depth
+// layers -> rotated-grid pyramid -> Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012;
+// the second layer as in the deep G-buffer paper) -> separable bilateral blur. Seed 004 point by
+// point: README.md in this folder.
+#include "blocks/blocks.h"
+#include "capture/capture.h"
+#include "capture/input_error.h"
+#include "techniques/registry.h"
+#include "techniques/sao/sao_settings.h"
+
+namespace aor {
+namespace {
+
+constexpr const char* kBias = "bias";
+constexpr const char* kIntensity = "intensity";
+constexpr const char* kSamples = "samples";
+constexpr const char* kSpiralTurns = "spiral_turns";
+constexpr const char* kBlurRadius = "blur_radius";
+constexpr const char* kBlurStep = "blur_step";
+constexpr const char* kEdgeSharpness = "edge_sharpness";
+constexpr const char* kCsz32 = "csz32";
+constexpr const char* kDualLayer = "dual_layer";
+
+void addSaoPipeline(FrameBuilder& frame, const Settings& settings) {
+  SaoSettings s = saoSettings(settings);
+  bool dualLayer = saoUsesSecondLayer(s, frame.capture());
+  // Step 2 of the seed: camera-space Z of every layer, then its pyramid.
+  auto csz = addSaoCszPass(frame, s, dualLayer);
+  frame.debugView("csz", csz, {0, 1, 0, 1});
+  addSaoMinifyPasses(frame, csz);
+  uint32_t levels = frame.graph().resources()[csz].desc.mipLevels;
+  for (uint32_t level = 1; level < levels; ++level) frame.debugView("csz_mip" + std::to_string(level), csz, {level, 1, 0, 1});
+  // Step 3: AO.
+  auto raw = addSaoPass(frame, s, dualLayer, csz);
+  frame.debugView("ao_raw", raw);
+  // Step 4: the blur, horizontal then vertical.
+  auto horizontal = addSaoBlurPass(frame, s, raw, csz, true);
+  frame.debugView("ao_blur_h", horizontal);
+  auto blurred = addSaoBlurPass(frame, s, horizontal, csz, false);
+  frame.debugView("ao", blurred);
+  // The shared temporal block (temporal > 0 in a multi-frame replay), else the blurred AO itself.
+  frame.setOutput(blocks::addSeed000Temporal(frame, {blurred, false, 1}), OutputLayout::visibilityOnly());
+}
+
+void checkSaoCapture(const Settings& settings, const Capture& capture) {
+  SaoSettings s = saoSettings(settings);
+  if (s.dualLayer == SaoDualLayer::On && !capture.hasDepth2)
+    throw InputError((capture.folder / "capture.json").string(), std::nullopt, kDualLayer, kSaoNoSecondLayer);
+}
+
+Preset samplesPreset(const char* name, int samples) {
+  return {name, {{kSamples, samples}, {kSpiralTurns, saoSpiralTurnsFor(samples)}}};
+}
+
+Technique makeSao() {
+  Technique t;
+  t.name = "sao";
+  t.seed = "004 deep G-buffer AO (SAO with a second depth layer)";
+  t.summary = "Scalable Ambient Obscurance on a camera-space Z pyramid, both depth layers where the capture has two, "
+              "separable bilateral blur";
+  Parameter dual = enumParameter(kDualLayer, {"0", "1", "auto"}, int(SaoDualLayer::Auto),
+                                 "second depth layer: 0 off, 1 on (the capture must have depth2), auto when it has one");
+  t.parameters = {
+      radiusParameter(0.75),
+      floatParameter(kBias, 0.023, 0, 1, "beta: obscurance bias along the normal, world units", true),
+      floatParameter(kIntensity, 1, 0, 16, "sigma: obscurance intensity", true),
+      intParameter(kSamples, 19, 1, int(kSaoSpiralTurnsTable.size()), "taps per pixel"),
+      intParameter(kSpiralTurns, saoSpiralTurnsFor(19), 1, 99, "tau: turns of the tap spiral (presets: the paper's table)"),
+      intParameter(kBlurRadius, 4, 0, 16, "bilateral blur taps on each side of each leg, 0 = no blur"),
+      intParameter(kBlurStep, 2, 1, 8, "pixels between blur taps"),
+      floatParameter(kEdgeSharpness, 1, 0, 100, "blur's depth edge sharpness, 0 = plain Gaussian", true),
+      boolParameter(kCsz32, false, "camera-space Z as R32F instead of R16F"),
+      dual,
+      blocks::temporalParameter(0),
+  };
+  t.presets = {samplesPreset("low", 9), samplesPreset("medium", 13), samplesPreset("high", 19), samplesPreset("ultra", 31)};
+  t.defaultPreset = "high";
+  t.inputs.depth2 = InputUse::Optional;
+  t.debugViews = {{"csz", "camera-space Z, level 0 (R layer 0, G layer 1 with the second layer; sky -1)"},
+                  {"csz_mip1", "camera-space Z pyramid, level 1 (rotated-grid subsample)"},
+                  {"csz_mip2", "camera-space Z pyramid, level 2"},
+                  {"csz_mip3", "camera-space Z pyramid, level 3"},
+                  {"csz_mip4", "camera-space Z pyramid, level 4"},
+                  {"ao_raw", "SAO's visibility before the blur"},
+                  {"ao_blur_h", "after the horizontal blur"},
+                  {"ao", "after both blur legs (the output unless temporal > 0)"}};
+  t.addPasses = addSaoPipeline;
+  t.history = blocks::seed000TemporalHistory;
+  t.withoutHistory = [](const Settings& s) -> std::optional<Settings> {
+    Settings without = s;
+    without.set(blocks::kTemporalKey, 0);
+    return without;
+  };
+  t.checkCapture = checkSaoCapture;
+  return t;
+}
+
+}  // namespace
+
+SaoSettings saoSettings(const Settings& s) {
+  SaoSettings o;
+  o.radius = s.f(kRadiusKey);
+  o.bias = s.f(kBias);
+  o.intensity = s.f(kIntensity);
+  o.samples = s.i(kSamples);
+  o.spiralTurns = s.i(kSpiralTurns);
+  o.blurRadius = s.i(kBlurRadius);
+  o.blurStep = s.i(kBlurStep);
+  o.edgeSharpness = s.f(kEdgeSharpness);
+  o.csz32 = s.b(kCsz32);
+  o.dualLayer = SaoDualLayer(s.i(kDualLayer));
+  o.temporal = s.f(blocks::kTemporalKey);
+  return o;
+}
+
+const Technique& saoTechnique() {
+  static const Technique t = makeSao();
+  return t;
+}
+
+}  // namespace aor
