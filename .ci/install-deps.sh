@@ -9,6 +9,8 @@ packages=(
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpng-dev
   libsimdjson-dev  # bounded, linear-time JSON input (replay/capture/json_input.h)
   libre2-dev       # linear-time regular expressions for --ignore
+  libssl-dev       # SHA-256 of captures and reports (the results store's keys)
+  libsqlitecpp-dev libsqlite3-dev libpqxx-dev postgresql  # aoreplay record/trend: SQLite store, PostgreSQL store and its test server
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz

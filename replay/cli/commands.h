@@ -21,6 +21,9 @@ void registerSweepCommand(CLI::App& app, const Technique& help);
 void registerTechniquesCommand(CLI::App& app);
 void registerAbCommand(CLI::App& app);
 void registerImportCommand(CLI::App& app);
+void registerRecordCommand(CLI::App& app);
+void registerTrendCommand(CLI::App& app);
+void registerExportCommand(CLI::App& app);
 int runSelected(CLI::App& app);
 
 }  // namespace aor::cli

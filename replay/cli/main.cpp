@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   aor::cli::registerTechniquesCommand(app);
   aor::cli::registerAbCommand(app);
   aor::cli::registerImportCommand(app);
+  aor::cli::registerRecordCommand(app);
+  aor::cli::registerTrendCommand(app);
+  aor::cli::registerExportCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);

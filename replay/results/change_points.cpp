@@ -1,0 +1,175 @@
+#include "results/change_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <set>
+
+#include "report/compare_stats.h"
+#include "results/shift_estimate.h"
+
+namespace aor::results {
+namespace {
+
+struct Flat {
+  std::vector<size_t> commitOf;             // per run, in history order
+  std::vector<std::vector<double>> logMs;   // per judged pass, per run
+  std::vector<std::vector<double>> ms;
+};
+
+std::vector<std::string> judgedPasses(const SeriesHistory& h) {
+  std::optional<std::set<std::string>> common;
+  for (const auto& c : h.commits)
+    for (const auto& r : c.runs) {
+      std::set<std::string> names;
+      for (const auto& p : r.passes)
+        if (!p.hostCopy) names.insert(p.name);
+      if (!common) common = names;
+      else {
+        std::set<std::string> both;
+        std::set_intersection(common->begin(), common->end(), names.begin(), names.end(), std::inserter(both, both.end()));
+        common = both;
+      }
+    }
+  return common ? std::vector<std::string>(common->begin(), common->end()) : std::vector<std::string>{};
+}
+
+Flat flatten(const SeriesHistory& h, const std::vector<std::string>& judged) {
+  Flat f;
+  f.logMs.resize(judged.size());
+  f.ms.resize(judged.size());
+  for (size_t c = 0; c < h.commits.size(); ++c)
+    for (const auto& r : h.commits[c].runs) {
+      f.commitOf.push_back(c);
+      for (size_t k = 0; k < judged.size(); ++k) {
+        auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const auto& p) { return p.name == judged[k]; });
+        f.ms[k].push_back(it->valueMs);
+        f.logMs[k].push_back(std::log(it->valueMs));
+      }
+    }
+  return f;
+}
+
+struct Boundary {
+  size_t at = 0;  // first run after the boundary
+  std::vector<PassShift> passes;
+  double score = std::numeric_limits<double>::infinity();  // smallest pHolm of a changed pass
+  double strongestShift = 0;                               // its |ln ratio|
+  size_t decidingPass = 0;                                 // that pass
+  bool slower = false;
+};
+
+std::vector<double> slice(const std::vector<double>& v, size_t from, size_t to) {
+  return std::vector<double>(v.begin() + std::ptrdiff_t(from), v.begin() + std::ptrdiff_t(to));
+}
+
+Boundary testBoundary(const Flat& f, const std::vector<std::string>& judged, size_t lo, size_t at, size_t hi,
+                      const TrendOptions& o, double level) {
+  Boundary b;
+  b.at = at;
+  size_t from = std::max(lo, at >= o.window ? at - o.window : 0), to = std::min(hi, at + o.window);
+  std::vector<double> pValues;
+  for (size_t k = 0; k < judged.size(); ++k) {
+    auto before = slice(f.logMs[k], from, at), after = slice(f.logMs[k], at, to);
+    PassShift s;
+    s.pass = judged[k];
+    s.before = before.size();
+    s.after = after.size();
+    s.beforeMedianMs = medianOf(slice(f.ms[k], from, at));
+    s.afterMedianMs = medianOf(slice(f.ms[k], at, to));
+    s.pValue = mannWhitneyExact(before, after).pValue;
+    auto shift = hodgesLehmann(before, after, o.confidence);
+    s.ratio = std::exp(shift.shift);
+    s.lower = std::exp(shift.lower);
+    s.upper = std::exp(shift.upper);
+    s.intervalConfidence = shift.confidence;
+    pValues.push_back(s.pValue);
+    b.passes.push_back(s);
+  }
+  auto holm = holmAdjusted(pValues);
+  for (size_t k = 0; k < judged.size(); ++k) {
+    auto& s = b.passes[k];
+    s.pHolm = holm[k];
+    double magnitude = std::abs(std::log(s.ratio));
+    s.changed = s.pHolm <= level && magnitude >= std::log1p(o.minEffect);
+    if (s.changed && (s.pHolm < b.score || (s.pHolm == b.score && magnitude > b.strongestShift))) {
+      b.score = s.pHolm;
+      b.strongestShift = magnitude;
+      b.decidingPass = k;
+      b.slower = s.ratio > 1;
+    }
+  }
+  return b;
+}
+
+// The boundaries the change may lie at: the best one, widened over each neighbouring commit whose
+// runs (their median) do not lie clearly on their own side, on the pass that decided the boundary:
+// placed on the line from the before median (0) to the after median (1), a commit before the
+// boundary beyond 1/3, or one after it short of 2/3. With such a commit the runs cannot tell on
+// which side of it the change happened. Never beyond a window of the best boundary.
+std::pair<size_t, size_t> suspects(const Flat& f, const Boundary& best, size_t lo, size_t hi, const TrendOptions& o) {
+  size_t k = best.decidingPass;
+  double before = std::log(best.passes[k].beforeMedianMs), after = std::log(best.passes[k].afterMedianMs);
+  auto place = [&](size_t from, size_t to) { return (medianOf(slice(f.logMs[k], from, to)) - before) / (after - before); };
+  size_t first = best.at, last = best.at;
+  while (first > lo && best.at - first < o.window) {
+    size_t start = first - 1;
+    while (start > lo && f.commitOf[start - 1] == f.commitOf[first - 1]) --start;
+    if (start == lo || place(start, first) <= 1.0 / 3) break;
+    first = start;  // the change may be at the commit before the boundary
+  }
+  while (last < hi && last - best.at < o.window) {
+    size_t end = last + 1;
+    while (end < hi && f.commitOf[end] == f.commitOf[last]) ++end;
+    if (end == hi || place(last, end) >= 2.0 / 3) break;
+    last = end;  // the change may be after the commit after the boundary
+  }
+  return {first, last};
+}
+
+// Runs [lo, hi) hold no change found so far; finds the strongest boundary in them, then looks on
+// each side of it.
+void scan(const Flat& f, const std::vector<std::string>& judged, size_t lo, size_t hi, const TrendOptions& o,
+          std::vector<ChangePoint>& out) {
+  std::vector<size_t> testable;
+  for (size_t at = lo + 1; at < hi; ++at) {
+    if (f.commitOf[at] == f.commitOf[at - 1]) continue;
+    size_t before = std::min(o.window, at - lo), after = std::min(o.window, hi - at);
+    if (before >= o.minRuns && after >= o.minRuns) testable.push_back(at);
+  }
+  if (testable.empty()) return;
+  double level = o.alpha / double(testable.size());
+  std::vector<Boundary> tested;
+  for (size_t at : testable) tested.push_back(testBoundary(f, judged, lo, at, hi, o, level));
+  auto best = std::min_element(tested.begin(), tested.end(), [](const Boundary& a, const Boundary& b) {
+    return a.score < b.score || (a.score == b.score && a.strongestShift > b.strongestShift);
+  });
+  if (!std::isfinite(best->score)) return;
+  auto [first, last] = suspects(f, *best, lo, hi, o);
+  ChangePoint change;
+  change.firstCommit = f.commitOf[first];
+  change.lastCommit = f.commitOf[last];
+  change.slower = best->slower;
+  change.level = level;
+  change.passes = best->passes;
+  scan(f, judged, lo, first, o, out);
+  out.push_back(change);
+  scan(f, judged, last, hi, o, out);
+}
+
+}  // namespace
+
+bool SeriesTrend::newSlowdown() const { return !changes.empty() && changes.back().slower; }
+
+SeriesTrend findChangePoints(const SeriesHistory& history, const TrendOptions& options) {
+  SeriesTrend trend;
+  trend.judged = judgedPasses(history);
+  for (const auto& c : history.commits) trend.runs += c.runs.size();
+  if (trend.judged.empty() || trend.runs == 0) return trend;
+  Flat flat = flatten(history, trend.judged);
+  scan(flat, trend.judged, 0, flat.commitOf.size(), options, trend.changes);
+  return trend;
+}
+
+}  // namespace aor::results

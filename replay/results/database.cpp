@@ -1,0 +1,22 @@
+#include "results/database.h"
+
+#include "results/postgres_database.h"
+#include "results/sqlite_database.h"
+
+namespace aor::results {
+
+std::optional<std::int64_t> Database::integerOrNone(const std::string& sql, const std::vector<SqlValue>& parameters) {
+  std::optional<std::int64_t> value;
+  query(sql, parameters, [&](const Row& row) {
+    if (!value && !row.isNull(0)) value = row.integer(0);
+  });
+  return value;
+}
+
+std::unique_ptr<Database> openDatabase(const std::string& url) {
+  if (url.starts_with("postgresql://") || url.starts_with("postgres://")) return openPostgres(url);
+  if (url.starts_with("sqlite:")) return openSqlite(url.substr(7));
+  return openSqlite(url);
+}
+
+}  // namespace aor::results
