@@ -54,9 +54,17 @@ Flat flatten(const SeriesHistory& h, const std::vector<std::string>& judged) {
 struct Boundary {
   size_t at = 0;  // first run after the boundary
   std::vector<PassShift> passes;
-  double score = std::numeric_limits<double>::infinity();  // smallest pHolm of a changed pass
-  double strongestShift = 0;                               // its |ln ratio|
-  size_t decidingPass = 0;                                 // that pass
+  // The deciding pass: of the changed ones, the most separated (|U / (m n) - 1/2|), then the one
+  // with the largest contrast (the least-squares change-point statistic: the difference of the
+  // sides' mean log values over its standard error). The separation, not the p-value, picks the
+  // boundary: p also falls with the window's size, so a boundary one run off, with a run more on
+  // its short side, could beat the true one on p while its sides overlap. The contrast breaks
+  // ties of complete separation: ranks cannot see that a run at +2 % belongs with the 0 % side,
+  // not with the +20 % one; means can.
+  bool anyChanged = false;
+  double separation = 0;
+  double contrast = 0;
+  size_t decidingPass = 0;
   bool slower = false;
 };
 
@@ -64,12 +72,27 @@ std::vector<double> slice(const std::vector<double>& v, size_t from, size_t to) 
   return std::vector<double>(v.begin() + std::ptrdiff_t(from), v.begin() + std::ptrdiff_t(to));
 }
 
+// |mean(after) - mean(before)| / its standard error (pooled variance); infinite without spread.
+double meanContrast(const std::vector<double>& before, const std::vector<double>& after) {
+  auto mean = [](const std::vector<double>& v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return sum / double(v.size());
+  };
+  double mb = mean(before), ma = mean(after), squares = 0;
+  for (double x : before) squares += (x - mb) * (x - mb);
+  for (double x : after) squares += (x - ma) * (x - ma);
+  double variance = squares / double(before.size() + after.size() - 2);
+  double error = std::sqrt(variance * (1.0 / double(before.size()) + 1.0 / double(after.size())));
+  return error > 0 ? std::abs(ma - mb) / error : std::numeric_limits<double>::infinity();
+}
+
 Boundary testBoundary(const Flat& f, const std::vector<std::string>& judged, size_t lo, size_t at, size_t hi,
                       const TrendOptions& o, double level) {
   Boundary b;
   b.at = at;
   size_t from = std::max(lo, at >= o.window ? at - o.window : 0), to = std::min(hi, at + o.window);
-  std::vector<double> pValues;
+  std::vector<double> pValues, contrasts;
   for (size_t k = 0; k < judged.size(); ++k) {
     auto before = slice(f.logMs[k], from, at), after = slice(f.logMs[k], at, to);
     PassShift s;
@@ -78,13 +101,17 @@ Boundary testBoundary(const Flat& f, const std::vector<std::string>& judged, siz
     s.after = after.size();
     s.beforeMedianMs = medianOf(slice(f.ms[k], from, at));
     s.afterMedianMs = medianOf(slice(f.ms[k], at, to));
-    s.pValue = mannWhitneyExact(before, after).pValue;
+    auto test = mannWhitneyExact(before, after);
+    s.pValue = test.pValue;
+    s.separation = std::abs(test.u / double(before.size() * after.size()) - 0.5);
+    double contrast = meanContrast(before, after);
     auto shift = hodgesLehmann(before, after, o.confidence);
     s.ratio = std::exp(shift.shift);
     s.lower = std::exp(shift.lower);
     s.upper = std::exp(shift.upper);
     s.intervalConfidence = shift.confidence;
     pValues.push_back(s.pValue);
+    contrasts.push_back(contrast);
     b.passes.push_back(s);
   }
   auto holm = holmAdjusted(pValues);
@@ -93,9 +120,11 @@ Boundary testBoundary(const Flat& f, const std::vector<std::string>& judged, siz
     s.pHolm = holm[k];
     double magnitude = std::abs(std::log(s.ratio));
     s.changed = s.pHolm <= level && magnitude >= std::log1p(o.minEffect);
-    if (s.changed && (s.pHolm < b.score || (s.pHolm == b.score && magnitude > b.strongestShift))) {
-      b.score = s.pHolm;
-      b.strongestShift = magnitude;
+    if (s.changed && (!b.anyChanged || s.separation > b.separation ||
+                      (s.separation == b.separation && contrasts[k] > b.contrast))) {
+      b.anyChanged = true;
+      b.separation = s.separation;
+      b.contrast = contrasts[k];
       b.decidingPass = k;
       b.slower = s.ratio > 1;
     }
@@ -142,10 +171,12 @@ void scan(const Flat& f, const std::vector<std::string>& judged, size_t lo, size
   double level = o.alpha / double(testable.size());
   std::vector<Boundary> tested;
   for (size_t at : testable) tested.push_back(testBoundary(f, judged, lo, at, hi, o, level));
+  // Earliest of equals: min_element keeps the first.
   auto best = std::min_element(tested.begin(), tested.end(), [](const Boundary& a, const Boundary& b) {
-    return a.score < b.score || (a.score == b.score && a.strongestShift > b.strongestShift);
+    if (a.anyChanged != b.anyChanged) return a.anyChanged;
+    return a.separation > b.separation || (a.separation == b.separation && a.contrast > b.contrast);
   });
-  if (!std::isfinite(best->score)) return;
+  if (!best->anyChanged) return;
   auto [first, last] = suspects(f, *best, lo, hi, o);
   ChangePoint change;
   change.firstCommit = f.commitOf[first];

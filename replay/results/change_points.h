@@ -29,6 +29,7 @@ struct PassShift {
   double ratio = 1, lower = 1, upper = 1;  // Hodges-Lehmann shift of log values as a ratio, and its interval
   double intervalConfidence = 0;
   double pValue = 1, pHolm = 1;  // exact U test; Holm-adjusted over the passes at this boundary
+  double separation = 0;         // |U / (before x after) - 1/2|: 1/2 when the sides do not overlap
   bool changed = false;          // pHolm <= the scan's level and |ln ratio| >= ln(1 + minEffect)
 };
 
