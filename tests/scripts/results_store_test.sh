@@ -115,21 +115,29 @@ set -e
 [ "$(sql 'SELECT COUNT(*) FROM samples')" -eq "$expected_samples" ] || fail "a killed record left samples behind"
 "$aoreplay" record "$work/reports/kill1.json" "$work/reports/kill2.json" --db "$db" --commit killed --ordinal 9 >/dev/null
 [ "$(sql 'SELECT COUNT(*) FROM runs')" -eq 23 ] || fail "the record after the kill did not store both runs"
-# Killed at random moments: all of a record's runs or none.
+# Killed at random moments of a record of 30 reports (its length measured first): all or none.
+batch() { files=(); for j in $(seq 1 30); do variant "$1_$j" "$2.$(printf %03d "$j")"; files+=("$work/reports/$1_$j.json"); done; }
+batch timed 4
+start=$(date +%s%N)
+"$aoreplay" record "${files[@]}" --db "$db" --commit timed --ordinal 10 >/dev/null
+length_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 RANDOM=26
-for i in 1 2 3 4 5 6; do
-  files=()
-  for j in 1 2 3 4 5 6 7 8; do variant "rk${i}_$j" "3.$i$j"; files+=("$work/reports/rk${i}_$j.json"); done
+killed_midway=0
+for i in 1 2 3 4 5 6 7 8; do
+  batch "rk$i" "5$i"
   before=$(sql 'SELECT COUNT(*) FROM runs')
   "$aoreplay" record "${files[@]}" --db "$db" --commit "random$i" --ordinal "$((10 + i))" >/dev/null 2>&1 &
   pid=$!
-  sleep "0.$((RANDOM % 40))"
+  delay_ms=$(( RANDOM % (length_ms + 1) ))
+  sleep "$(printf '%d.%03d' $((delay_ms / 1000)) $((delay_ms % 1000)))"
   kill -KILL "$pid" 2>/dev/null || true
   wait "$pid" 2>/dev/null || true
   after=$(sql 'SELECT COUNT(*) FROM runs')
-  [ "$after" -eq "$before" ] || [ "$after" -eq $((before + 8)) ] || fail "kill $i left $((after - before)) of 8 runs"
-  echo "kill at a random moment $i: $((after - before)) of 8 runs (all or none)"
+  [ "$after" -eq "$before" ] || [ "$after" -eq $((before + 30)) ] || fail "kill $i left $((after - before)) of 30 runs"
+  [ "$after" -eq "$before" ] && killed_midway=$((killed_midway + 1))
+  echo "killed after ${delay_ms} ms of a ${length_ms} ms record: $((after - before)) of 30 runs stored (all or none)"
 done
+echo "$killed_midway of 8 random kills landed before the commit"
 
 # --- idempotence at the command line ---------------------------------------------------------
 out=$("$aoreplay" record "$work/reports/p1r1.json" --db "$db" --commit commit1 --ordinal 1)
@@ -140,20 +148,20 @@ rc=$?
 set -e
 [ "$rc" -eq 2 ] && grep -q "already recorded for commit commit1" "$work/err.txt" || fail "a report for two commits: exit $rc"
 
-# --- trend: a slowdown at commit s07, exit 1, JUnit; exports ---------------------------------
+# --- trend: a slowdown at commit s13, exit 1, JUnit; exports ---------------------------------
 new_store history
-for c in $(seq -w 1 14); do
-  factor=$(python3 -c "import sys; c=int(sys.argv[1]); print((1.3 if c >= 7 else 1.0) * (1 + ((c * 37) % 11 - 5) / 1000))" "$c")
+for c in $(seq -w 1 24); do
+  factor=$(python3 -c "import sys; c=int(sys.argv[1]); print((1.3 if c >= 13 else 1.0) * (1 + ((c * 37) % 11 - 5) / 1000))" "$c")
   variant "h$c" "$factor"
-  "$aoreplay" record "$work/reports/h$c.json" --db "$db" --commit "s$c" --ordinal "$c" >/dev/null
+  "$aoreplay" record "$work/reports/h$c.json" --db "$db" --commit "s$c" --ordinal "$((10#$c))" >/dev/null
 done
 set +e
-"$aoreplay" trend --db "$db" --junit "$work/junit.xml" --json "$work/trend.json" --plot "$work/plots" --window 6 >"$work/trend.txt"
+"$aoreplay" trend --db "$db" --junit "$work/junit.xml" --json "$work/trend.json" --plot "$work/plots" >"$work/trend.txt"
 rc=$?
 set -e
 cat "$work/trend.txt"
 [ "$rc" -eq 1 ] || fail "trend on a slowdown exited $rc, not 1"
-grep -q "first commit after the change: s07" "$work/trend.txt" || fail "trend did not name s07"
+grep -q "first commit after the change: s13" "$work/trend.txt" || fail "trend did not name s13"
 python3 - "$work/junit.xml" "$work/trend.json" "$work/plots" <<'PY' || fail "JUnit, JSON or plot"
 import json, os, sys, xml.etree.ElementTree as ET
 suite = ET.parse(sys.argv[1]).getroot().find("testsuite")
@@ -162,16 +170,16 @@ failed = [c.get("name") for c in suite.iter("testcase") if c.find("failure") is 
 assert "total" in failed, failed
 t = json.load(open(sys.argv[2]))
 (s,) = t["series"]
-assert s["new_slowdown"] and len(s["changes"]) == 1 and s["changes"][0]["first_commit"] == "s07", s["changes"]
+assert s["new_slowdown"] and len(s["changes"]) == 1 and s["changes"][0]["first_commit"] == "s13", s["changes"]
 plots = os.listdir(sys.argv[3])
 assert plots == [s["fingerprint"][:12] + ".svg"], plots
 root = ET.parse(os.path.join(sys.argv[3], plots[0])).getroot()
 assert root.tag.endswith("svg")
 PY
-"$aoreplay" trend --db "$db" --since s07 --window 6 >/dev/null || fail "trend since the change: no change in it, exit 0 expected"
-"$aoreplay" export --db "$db" --format google-benchmark --commit s03 --out "$work/before.json" >/dev/null
-"$aoreplay" export --db "$db" --format google-benchmark --commit s10 --out "$work/after.json" >/dev/null
-"$aoreplay" export --db "$db" --format bencher --commit s10 --out "$work/bmf.json" >/dev/null
+"$aoreplay" trend --db "$db" --since s13 >/dev/null || fail "trend since the change: no change in it, exit 0 expected"
+"$aoreplay" export --db "$db" --format google-benchmark --commit s05 --out "$work/before.json" >/dev/null
+"$aoreplay" export --db "$db" --format google-benchmark --commit s20 --out "$work/after.json" >/dev/null
+"$aoreplay" export --db "$db" --format bencher --commit s20 --out "$work/bmf.json" >/dev/null
 "$aoreplay" export --db "$db" --format otava --out "$work/otava.csv" >/dev/null
 compare_py=/usr/share/benchmark/compare.py
 if [ -f "$compare_py" ]; then
@@ -193,18 +201,18 @@ for name, measures in bmf.items():
         assert m["lower_value"] <= m["value"] <= m["upper_value"], m
 # Otava: a time column, then one numeric column per metric, a row per commit in time order.
 rows = list(csv.DictReader(open(sys.argv[2])))
-assert len(rows) == 14 and [r["commit"] for r in rows] == ["s%02d" % c for c in range(1, 15)], rows
+assert len(rows) == 24 and [r["commit"] for r in rows] == ["s%02d" % c for c in range(1, 25)], rows
 metric = next(k for k in rows[0] if k.endswith("/total"))
 assert float(rows[-1][metric]) > 1.25 * float(rows[0][metric])
 PY
-echo "trend named s07 (exit 1), JUnit, JSON, plot, Google Benchmark, Bencher and Otava exports checked"
+echo "trend named s13 (exit 1), JUnit, JSON, plot, Google Benchmark, Bencher and Otava exports checked"
 
 # --- trend on a flat history: exit 0 ---------------------------------------------------------
 new_store flat
-for c in $(seq -w 1 14); do
+for c in $(seq -w 1 24); do
   variant "f$c" "$(python3 -c "import sys; c=int(sys.argv[1]); print(1 + ((c * 37) % 11 - 5) / 1000)" "$c")"
   "$aoreplay" record "$work/reports/f$c.json" --db "$db" --commit "f$c" --date "2026-01-$c" >/dev/null
 done
-"$aoreplay" trend --db "$db" --window 6 >"$work/flat.txt" || { cat "$work/flat.txt"; fail "trend on a flat history exited 1"; }
+"$aoreplay" trend --db "$db" >"$work/flat.txt" || { cat "$work/flat.txt"; fail "trend on a flat history exited 1"; }
 grep -q "no change" "$work/flat.txt" || fail "flat history: no 'no change'"
 echo "PASS ($mode)"
