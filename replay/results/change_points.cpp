@@ -133,10 +133,12 @@ Boundary testBoundary(const Flat& f, const std::vector<std::string>& judged, siz
 }
 
 // The boundaries the change may lie at: the best one, widened over each neighbouring commit whose
-// runs (their median) do not lie clearly on their own side, on the pass that decided the boundary:
-// placed on the line from the before median (0) to the after median (1), a commit before the
-// boundary beyond 1/3, or one after it short of 2/3. With such a commit the runs cannot tell on
-// which side of it the change happened. Never beyond a window of the best boundary.
+// runs (their median) do not lie clearly on their own side, on the pass that decided the boundary.
+// Placed on the line from the before median (0) to the after median (1), a commit before the
+// boundary is clear within 1/3 of 0, one after it within 1/3 of 1. Between, it could be either;
+// beyond the far side (a run slowed by something else, three times the change, say), it tells
+// nothing about where the change is. With such a commit the runs cannot tell on which side of it
+// the change happened. Never beyond a window of the best boundary.
 std::pair<size_t, size_t> suspects(const Flat& f, const Boundary& best, size_t lo, size_t hi, const TrendOptions& o) {
   size_t k = best.decidingPass;
   double before = std::log(best.passes[k].beforeMedianMs), after = std::log(best.passes[k].afterMedianMs);
@@ -145,13 +147,13 @@ std::pair<size_t, size_t> suspects(const Flat& f, const Boundary& best, size_t l
   while (first > lo && best.at - first < o.window) {
     size_t start = first - 1;
     while (start > lo && f.commitOf[start - 1] == f.commitOf[first - 1]) --start;
-    if (start == lo || place(start, first) <= 1.0 / 3) break;
+    if (start == lo || std::abs(place(start, first)) <= 1.0 / 3) break;
     first = start;  // the change may be at the commit before the boundary
   }
   while (last < hi && last - best.at < o.window) {
     size_t end = last + 1;
     while (end < hi && f.commitOf[end] == f.commitOf[last]) ++end;
-    if (end == hi || place(last, end) >= 2.0 / 3) break;
+    if (end == hi || std::abs(place(last, end) - 1) <= 1.0 / 3) break;
     last = end;  // the change may be after the commit after the boundary
   }
   return {first, last};

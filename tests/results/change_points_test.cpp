@@ -126,6 +126,17 @@ TEST(ChangePoints, AmbiguousCommitGivesASuspectRange) {
   EXPECT_EQ(trend.changes[0].lastCommit, 16u);
 }
 
+TEST(ChangePoints, DisturbedRunNextToTheChangeGivesASuspectRange) {
+  auto h = history(30, 1, 15, 1.3, 0.01, 17);
+  // Commit 14's one run took twice as long (another process on the machine): it is slower than
+  // either side, so it cannot say whether the change came before it or after it.
+  for (auto& p : h.commits[14].runs[0].passes) p.valueMs *= 2;
+  auto trend = findChangePoints(h, TrendOptions{});
+  ASSERT_EQ(trend.changes.size(), 1u);
+  EXPECT_EQ(trend.changes[0].firstCommit, 14u);
+  EXPECT_EQ(trend.changes[0].lastCommit, 15u);
+}
+
 TEST(ChangePoints, NewestRunsAreJudgedOnceEnoughFollowTheChange) {
   // 3 runs after the step: not testable with at least 4 a side. 4 after: testable, but 2/C(14, 4)
   // x 3 passes is above 0.05 over the 23 boundaries scanned. 8 after: named.

@@ -26,8 +26,8 @@ if [ "$mode" = postgresql ]; then
     server_user=nobody
     as_server() { runuser -u "$server_user" -- "$@"; }
   fi
-  pg_dir="$work/pg"
-  mkdir -p "$pg_dir"
+  # In /tmp: the server's user must reach its data folder, which the build tree may not let it.
+  pg_dir=$(mktemp -d /tmp/aoreplay-pg.XXXXXX)
   [ -z "$server_user" ] || chown "$server_user" "$pg_dir"
   as_server "$pg_bin/initdb" -D "$pg_dir/data" -U aoreplay --auth=trust -E UTF8 >"$work/initdb.log" 2>&1 ||
     { cat "$work/initdb.log"; fail "initdb failed"; }
@@ -35,7 +35,7 @@ if [ "$mode" = postgresql ]; then
   as_server "$pg_bin/pg_ctl" -D "$pg_dir/data" -l "$pg_dir/server.log" -w -t 60 \
     -o "-c listen_addresses=127.0.0.1 -p $port -k $pg_dir -c fsync=off" start >/dev/null ||
     { cat "$pg_dir/server.log"; fail "the PostgreSQL server did not start"; }
-  trap 'as_server "$pg_bin/pg_ctl" -D "$pg_dir/data" -m fast -w stop >/dev/null 2>&1 || true' EXIT
+  trap 'as_server "$pg_bin/pg_ctl" -D "$pg_dir/data" -m fast -w stop >/dev/null 2>&1 || true; rm -rf "$pg_dir"' EXIT
   db="postgresql://aoreplay@127.0.0.1:$port/postgres"
   new_store() {  # a fresh database on the server, its URL in $db
     local name=$1
@@ -151,7 +151,7 @@ set -e
 # --- trend: a slowdown at commit s13, exit 1, JUnit; exports ---------------------------------
 new_store history
 for c in $(seq -w 1 24); do
-  factor=$(python3 -c "import sys; c=int(sys.argv[1]); print((1.3 if c >= 13 else 1.0) * (1 + ((c * 37) % 11 - 5) / 1000))" "$c")
+  factor=$(python3 -c "import sys; c=int(sys.argv[1]); print((1.3 if c >= 13 else 1.0) * (1 + ((c * 37) % 11 - 5) / 1000 + c / 100000))" "$c")
   variant "h$c" "$factor"
   "$aoreplay" record "$work/reports/h$c.json" --db "$db" --commit "s$c" --ordinal "$((10#$c))" >/dev/null
 done
@@ -210,7 +210,7 @@ echo "trend named s13 (exit 1), JUnit, JSON, plot, Google Benchmark, Bencher and
 # --- trend on a flat history: exit 0 ---------------------------------------------------------
 new_store flat
 for c in $(seq -w 1 24); do
-  variant "f$c" "$(python3 -c "import sys; c=int(sys.argv[1]); print(1 + ((c * 37) % 11 - 5) / 1000)" "$c")"
+  variant "f$c" "$(python3 -c "import sys; c=int(sys.argv[1]); print(1 + ((c * 37) % 11 - 5) / 1000 + c / 100000)" "$c")"
   "$aoreplay" record "$work/reports/f$c.json" --db "$db" --commit "f$c" --date "2026-01-$c" >/dev/null
 done
 "$aoreplay" trend --db "$db" >"$work/flat.txt" || { cat "$work/flat.txt"; fail "trend on a flat history exited 1"; }
