@@ -132,31 +132,86 @@ Boundary testBoundary(const Flat& f, const std::vector<std::string>& judged, siz
   return b;
 }
 
+// A boundary with a changed pass before one without; then the more separated; then the larger
+// contrast.
+bool better(const Boundary& a, const Boundary& b) {
+  if (a.anyChanged != b.anyChanged) return a.anyChanged;
+  return a.separation > b.separation || (a.separation == b.separation && a.contrast > b.contrast);
+}
+
 // The boundaries the change may lie at: the best one, widened over each neighbouring commit whose
 // runs (their median) do not lie clearly on their own side, on the pass that decided the boundary.
 // Placed on the line from the before median (0) to the after median (1), a commit before the
 // boundary is clear within 1/3 of 0, one after it within 1/3 of 1. Between, it could be either;
 // beyond the far side (a run slowed by something else, three times the change, say), it tells
 // nothing about where the change is. With such a commit the runs cannot tell on which side of it
-// the change happened. Never beyond a window of the best boundary.
-std::pair<size_t, size_t> suspects(const Flat& f, const Boundary& best, size_t lo, size_t hi, const TrendOptions& o) {
+// the change happened. Never beyond a window of the boundary `at`. The pass and the two medians
+// are the best (significant) boundary's.
+std::pair<size_t, size_t> suspects(const Flat& f, const Boundary& best, size_t at, size_t lo, size_t hi,
+                                   const TrendOptions& o) {
   size_t k = best.decidingPass;
   double before = std::log(best.passes[k].beforeMedianMs), after = std::log(best.passes[k].afterMedianMs);
   auto place = [&](size_t from, size_t to) { return (medianOf(slice(f.logMs[k], from, to)) - before) / (after - before); };
-  size_t first = best.at, last = best.at;
-  while (first > lo && best.at - first < o.window) {
+  size_t first = at, last = at;
+  while (first > lo && at - first < o.window) {
     size_t start = first - 1;
     while (start > lo && f.commitOf[start - 1] == f.commitOf[first - 1]) --start;
     if (start == lo || std::abs(place(start, first)) <= 1.0 / 3) break;
     first = start;  // the change may be at the commit before the boundary
   }
-  while (last < hi && last - best.at < o.window) {
+  while (last < hi && last - at < o.window) {
     size_t end = last + 1;
     while (end < hi && f.commitOf[end] == f.commitOf[last]) ++end;
     if (end == hi || std::abs(place(last, end) - 1) <= 1.0 / 3) break;
     last = end;  // the change may be after the commit after the boundary
   }
   return {first, last};
+}
+
+// Where the change is, among the boundaries within a window of the best one whose deciding pass
+// moved the same way (significant or not: the best boundary is the evidence that there is a
+// change, this only places it): the boundary with the fewest commits on the wrong side of it, each commit taken
+// as the median of its runs on the best boundary's deciding pass and placed between that
+// boundary's before (0) and after (1) medians: a commit before the boundary within 1/3 of 1, or
+// one after it within 1/3 of 0, is misplaced; one beyond either side (a disturbed run) counts for
+// nothing. Ties keep the order of `better` (the separation first). The separation alone is
+// enough on quiet runs; on a machine where other processes slow one run in seven down, a wide
+// window holds several such runs, and ranks cannot tell a disturbed old run from a new one: the
+// commits' medians can.
+const Boundary* fewestMisplaced(const Flat& f, const std::vector<Boundary>& tested, const Boundary& best, size_t lo,
+                                size_t hi, const TrendOptions& o) {
+  size_t k = best.decidingPass;
+  double before = std::log(best.passes[k].beforeMedianMs), after = std::log(best.passes[k].afterMedianMs);
+  std::vector<std::pair<size_t, size_t>> commits;  // run ranges of the segment's commits
+  for (size_t at = lo; at < hi;) {
+    size_t end = at + 1;
+    while (end < hi && f.commitOf[end] == f.commitOf[at]) ++end;
+    commits.push_back({at, end});
+    at = end;
+  }
+  std::vector<double> places;
+  for (const auto& [from, to] : commits)
+    places.push_back((medianOf(slice(f.logMs[k], from, to)) - before) / (after - before));
+  auto misplaced = [&](size_t boundary) {
+    size_t count = 0;
+    for (size_t c = 0; c < commits.size(); ++c) {
+      auto [from, to] = commits[c];
+      if (to + o.window <= boundary || from >= boundary + o.window) continue;
+      bool beforeSide = to <= boundary;
+      if (beforeSide ? std::abs(places[c] - 1) <= 1.0 / 3 : std::abs(places[c]) <= 1.0 / 3) ++count;
+    }
+    return count;
+  };
+  const Boundary* chosen = &best;
+  size_t fewest = misplaced(best.at);
+  for (const auto& b : tested) {
+    bool near = (b.at > best.at ? b.at - best.at : best.at - b.at) < o.window;
+    bool sameWay = (b.passes[k].ratio > 1) == (best.passes[k].ratio > 1);
+    if (!sameWay || !near) continue;
+    size_t count = misplaced(b.at);
+    if (count < fewest || (count == fewest && better(b, *chosen))) chosen = &b, fewest = count;
+  }
+  return chosen;
 }
 
 // Runs [lo, hi) hold no change found so far; finds the strongest boundary in them, then looks on
@@ -173,19 +228,16 @@ void scan(const Flat& f, const std::vector<std::string>& judged, size_t lo, size
   double level = o.alpha / double(testable.size());
   std::vector<Boundary> tested;
   for (size_t at : testable) tested.push_back(testBoundary(f, judged, lo, at, hi, o, level));
-  // Earliest of equals: min_element keeps the first.
-  auto best = std::min_element(tested.begin(), tested.end(), [](const Boundary& a, const Boundary& b) {
-    if (a.anyChanged != b.anyChanged) return a.anyChanged;
-    return a.separation > b.separation || (a.separation == b.separation && a.contrast > b.contrast);
-  });
+  auto best = std::min_element(tested.begin(), tested.end(), better);  // earliest of equals: the first
   if (!best->anyChanged) return;
-  auto [first, last] = suspects(f, *best, lo, hi, o);
+  const Boundary& chosen = *fewestMisplaced(f, tested, *best, lo, hi, o);
+  auto [first, last] = suspects(f, *best, chosen.at, lo, hi, o);
   ChangePoint change;
   change.firstCommit = f.commitOf[first];
   change.lastCommit = f.commitOf[last];
   change.slower = best->slower;
   change.level = level;
-  change.passes = best->passes;
+  change.passes = best->passes;  // the evidence: the significant boundary's tests
   scan(f, judged, lo, first, o, out);
   out.push_back(change);
   scan(f, judged, last, hi, o, out);

@@ -15,7 +15,7 @@
 namespace aor::results {
 
 struct TrendOptions {
-  size_t window = 10;       // runs a side at most
+  size_t window = 30;       // runs a side at most
   size_t minRuns = 4;       // runs a side at least, else the boundary is not tested
   double alpha = 0.05;      // false-alarm rate per series and segment
   double minEffect = 0.02;  // smallest shift that counts, as a ratio either way (x1.02 or x1/1.02)
