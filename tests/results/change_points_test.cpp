@@ -138,13 +138,16 @@ TEST(ChangePoints, DisturbedRunNextToTheChangeGivesASuspectRange) {
 }
 
 TEST(ChangePoints, NewestRunsAreJudgedOnceEnoughFollowTheChange) {
-  // 3 runs after the step: not testable with at least 4 a side. 4 after: testable, but 2/C(14, 4)
-  // x 3 passes is above 0.05 over the 23 boundaries scanned. 8 after: named.
+  // 3 runs after the step: not testable with at least 4 a side. 4 after, 27 before:
+  // 2/C(31, 4) x 3 passes = 1.9e-4, under 0.05 over the 24 boundaries scanned: named.
   EXPECT_TRUE(findChangePoints(history(30, 1, 27, 1.5, 0.01, 13), TrendOptions{}).changes.empty());
-  EXPECT_TRUE(findChangePoints(history(31, 1, 27, 1.5, 0.01, 13), TrendOptions{}).changes.empty());
-  auto eight = findChangePoints(history(35, 1, 27, 1.5, 0.01, 13), TrendOptions{});
-  ASSERT_EQ(eight.changes.size(), 1u);
-  EXPECT_EQ(eight.changes[0].firstCommit, 27u);
+  auto four = findChangePoints(history(31, 1, 27, 1.5, 0.01, 13), TrendOptions{});
+  ASSERT_EQ(four.changes.size(), 1u);
+  EXPECT_EQ(four.changes[0].firstCommit, 27u);
+  // With a window of 10 the 4 runs after face 10 before: 2/C(14, 4) x 3 = 6e-3, not enough.
+  TrendOptions narrow;
+  narrow.window = 10;
+  EXPECT_TRUE(findChangePoints(history(31, 1, 27, 1.5, 0.01, 13), narrow).changes.empty());
 }
 
 }  // namespace
