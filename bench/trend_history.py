@@ -12,7 +12,7 @@ recording the same commit):
   no change: all A runs shuffled as commits n01, n02, ...; trend must find no change.
 Each history is its own SQLite store. Prints one line per history and the counts. Runs already in
 OUT_DIR/runs are kept (delete the folder for new ones).
-  python3 bench/trend_history.py BUILD_DIR OUT_DIR [--a-runs 60] [--b-runs 45] [--runs-per-commit 3] [--shuffles 20]
+  python3 bench/trend_history.py BUILD_DIR OUT_DIR [--a-runs 60] [--b-runs 45] [--runs-per-commit 5] [--shuffles 20]
 """
 import argparse
 import json
@@ -66,7 +66,7 @@ def main():
     parser.add_argument("out")
     parser.add_argument("--a-runs", type=int, default=60)
     parser.add_argument("--b-runs", type=int, default=45)
-    parser.add_argument("--runs-per-commit", type=int, default=3)
+    parser.add_argument("--runs-per-commit", type=int, default=5)
     parser.add_argument("--shuffles", type=int, default=20)
     parser.add_argument("--runs-only", action="store_true", help="take the missing runs, judge nothing")
     args = parser.parse_args()
