@@ -152,14 +152,18 @@ std::string trendPlot(const TrendResult& r) {
     series.push_back(std::move(runs));
   }
   PlotOptions options;
-  options.title = fmt::format("{} ({}): run medians per commit, change points marked", h.key.label(), shortSha(h.fingerprint));
+  options.title = fmt::format("{} {} on {} ({}): medians per commit, change points dashed", h.key.captureName,
+                              h.key.technique, h.key.device.substr(0, h.key.device.find(" (")), shortSha(h.fingerprint));
   options.xLabel = fmt::format("commit (in {} order; {} .. {})", h.positionKind,
                                h.commits.empty() ? "" : shortSha(h.commits.front().sha),
                                h.commits.empty() ? "" : shortSha(h.commits.back().sha));
-  options.yLabel = "GPU ms (log scale)";
+  options.yLabel = "GPU ms";
   options.logY = true;
   options.width = 1000;
-  for (const auto& c : r.trend.changes) options.verticalMarkers.push_back(double(c.firstCommit) - 0.5);
+  for (const auto& c : r.trend.changes) {
+    options.verticalMarkers.push_back(double(c.firstCommit) - 0.5);
+    if (c.isRange()) options.verticalMarkers.push_back(double(c.lastCommit) - 0.5);  // a suspect range: both ends
+  }
   return svgPlot(series, options);
 }
 
