@@ -183,7 +183,8 @@ PY
 "$aoreplay" export --db "$db" --format otava --out "$work/otava.csv" >/dev/null
 compare_py=/usr/share/benchmark/compare.py
 if [ -f "$compare_py" ]; then
-  python3 "$compare_py" benchmarks "$work/before.json" "$work/after.json" >"$work/compare_py.txt" ||
+  # Debian's interpreter: compare.py needs python3-scipy, which is installed for it
+  /usr/bin/python3 "$compare_py" benchmarks "$work/before.json" "$work/after.json" >"$work/compare_py.txt" ||
     fail "compare.py did not read the Google Benchmark export"
   grep -q "/gtao " "$work/compare_py.txt" || { cat "$work/compare_py.txt"; fail "compare.py shows no gtao"; }
   echo "compare.py read the exports: $(grep -c / "$work/compare_py.txt") lines"
