@@ -31,7 +31,7 @@ std::string newestCommit(const std::vector<results::SeriesHistory>& series) {
 }
 
 int exportRuns(const ExportArgs& args) {
-  auto db = results::openDatabase(args.db);
+  auto db = results::openDatabase(args.db, false);
   results::migrate(*db);
   auto series = results::loadHistory(*db, args.series, std::nullopt);
   if (series.empty()) throw InputError(db->displayName(), std::nullopt, "--series", "no series with runs matches");

@@ -43,7 +43,7 @@ int record(const RecordArgs& args) {
   // Every report is read and checked before the store is locked: the write lock is held only for the inserts.
   std::vector<results::ReportInput> reports;
   for (const auto& path : args.reports) reports.push_back(results::readReportInput(path));
-  auto db = results::openDatabase(args.db);
+  auto db = results::openDatabase(args.db, true);
   results::migrate(*db);
   auto outcome = results::recordRuns(*db, reports, commit, tags);
   fmt::print("recorded {} run{} for commit {} into {}", outcome.stored, outcome.stored == 1 ? "" : "s", commit.sha,

@@ -23,7 +23,7 @@ struct TrendArgs {
 };
 
 int trend(const TrendArgs& args) {
-  auto db = results::openDatabase(args.db);
+  auto db = results::openDatabase(args.db, false);
   results::migrate(*db);
   std::optional<double> since;
   if (!args.since.empty()) since = results::commitPosition(*db, args.since, "--since");

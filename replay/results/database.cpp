@@ -1,5 +1,9 @@
 #include "results/database.h"
 
+#include <filesystem>
+
+#include "capture/input_error.h"
+
 #include "results/postgres_database.h"
 #include "results/sqlite_database.h"
 
@@ -13,10 +17,12 @@ std::optional<std::int64_t> Database::integerOrNone(const std::string& sql, cons
   return value;
 }
 
-std::unique_ptr<Database> openDatabase(const std::string& url) {
+std::unique_ptr<Database> openDatabase(const std::string& url, bool create) {
   if (url.starts_with("postgresql://") || url.starts_with("postgres://")) return openPostgres(url);
-  if (url.starts_with("sqlite:")) return openSqlite(url.substr(7));
-  return openSqlite(url);
+  std::filesystem::path file = url.starts_with("sqlite:") ? url.substr(7) : url;
+  if (!create && !std::filesystem::exists(file))
+    throw InputError(file.string(), std::nullopt, "--db", "no such store (aoreplay record creates one)");
+  return openSqlite(file);
 }
 
 }  // namespace aor::results

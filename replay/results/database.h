@@ -55,9 +55,10 @@ class Database {
 };
 
 // `postgresql://...` or `postgres://...` (libpq's URL form) is a PostgreSQL server; `sqlite:PATH`
-// or any other text is the path of an SQLite file, created when missing. Throws InputError for a
-// store that cannot be opened (naming it) and StoreError for the server's errors.
-std::unique_ptr<Database> openDatabase(const std::string& url);
+// or any other text is the path of an SQLite file, created when missing if `create` (record), else
+// refused (trend, export). Throws InputError for a store that cannot be opened (naming it) and
+// StoreError for the server's errors.
+std::unique_ptr<Database> openDatabase(const std::string& url, bool create);
 
 // A store's error (busy past the timeout, a server gone, a constraint): exit 1, not bad input.
 struct StoreError : std::runtime_error {

@@ -41,7 +41,7 @@ CommitInfo commit(const std::string& sha, double ordinal) { return {sha, "main",
 
 TEST(ResultsStore, NewStoreIsMigratedToTheCurrentVersionInWalMode) {
   TempStore t;
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   migrate(*db);
   EXPECT_EQ(db->schemaVersion(), currentSchemaVersion());
   SQLite::Database raw(t.file.string());
@@ -55,18 +55,26 @@ TEST(ResultsStore, VersionOneStoreIsMigratedKeepingItsRows) {
   TempStore t;
   {
     // A store as the first schema left it: its tables, version 1, one commit.
-    auto db = openDatabase(t.file.string());
+    auto db = openDatabase(t.file.string(), true);
     migrate(*db);
     SQLite::Database raw(t.file.string(), SQLite::OPEN_READWRITE);
     raw.exec("DROP INDEX runs_by_series; DROP INDEX commits_by_position; PRAGMA user_version = 1");
     raw.exec("INSERT INTO commits (sha, branch, position_kind, position) VALUES ('old', 'main', 'ordinal', 1)");
   }
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   migrate(*db);
   EXPECT_EQ(db->schemaVersion(), currentSchemaVersion());
   EXPECT_EQ(countRows(*db).commits, 1);
   SQLite::Database raw(t.file.string());
   EXPECT_EQ(raw.execAndGet("SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs_by_series'").getInt(), 1);
+}
+
+TEST(ResultsStore, MissingStoreIsCreatedOnlyWhenAsked) {
+  TempStore t;
+  EXPECT_THROW(openDatabase(t.file.string(), false), InputError);
+  EXPECT_FALSE(fs::exists(t.file));
+  openDatabase("sqlite:" + t.file.string(), true);
+  EXPECT_TRUE(fs::exists(t.file));
 }
 
 TEST(ResultsStore, NewerStoreIsRefused) {
@@ -75,13 +83,13 @@ TEST(ResultsStore, NewerStoreIsRefused) {
     SQLite::Database raw(t.file.string(), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
     raw.exec("PRAGMA user_version = 99");
   }
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   EXPECT_THROW(migrate(*db), InputError);
 }
 
 TEST(ResultsStore, RecordingTheSameReportTwiceStoresItOnce) {
   TempStore t;
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   migrate(*db);
   auto first = recordRuns(*db, {report("a", 1.0), report("b", 1.1)}, commit("c1", 1), {{"runner", "ci-1"}});
   EXPECT_EQ(first.stored, 2u);
@@ -98,7 +106,7 @@ TEST(ResultsStore, RecordingTheSameReportTwiceStoresItOnce) {
 
 TEST(ResultsStore, ConflictingRecordsAreRefusedAndLeaveNothing) {
   TempStore t;
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   migrate(*db);
   recordRuns(*db, {report("a", 1.0)}, commit("c1", 1), {});
   // The same report for another commit; the same commit at another position; dates in an ordinal store.
@@ -112,7 +120,7 @@ TEST(ResultsStore, ConflictingRecordsAreRefusedAndLeaveNothing) {
 
 TEST(ResultsStore, HistoryComesBackInCommitOrderWhateverTheRecordingOrder) {
   TempStore t;
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   migrate(*db);
   recordRuns(*db, {report("z", 3.0)}, commit("third", 30), {});
   recordRuns(*db, {report("y", 1.5), report("x", 1.0)}, commit("first", 10), {});
@@ -140,7 +148,7 @@ TEST(ResultsStore, HistoryComesBackInCommitOrderWhateverTheRecordingOrder) {
 
 TEST(ResultsStore, DoublesRoundTripExactly) {
   TempStore t;
-  auto db = openDatabase(t.file.string());
+  auto db = openDatabase(t.file.string(), true);
   migrate(*db);
   double awkward = 0.1 + 0.2;  // 0.30000000000000004
   recordRuns(*db, {report("a", awkward)}, commit("c1", 1), {});
