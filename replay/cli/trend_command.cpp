@@ -56,7 +56,7 @@ void registerTrendCommand(CLI::App& app) {
   addStoreOption(*cmd, args->db);
   cmd->add_option("--series", args->series, "only series whose fingerprint starts with, or whose label contains, this");
   cmd->add_option("--since", args->since, "only runs of this recorded commit and later ones");
-  cmd->add_option("--window", args->options.window, "runs a side tested at a boundary, at most (default 10)")
+  cmd->add_option("--window", args->options.window, "runs a side tested at a boundary, at most (default 30)")
       ->check(CLI::Range(4, 50));
   cmd->add_option("--min-runs", args->options.minRuns, "runs a side a boundary needs to be tested (default 4)")
       ->check(CLI::Range(2, 50));
