@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <fmt/format.h>
 
 #include "capture/input_error.h"
 #include "results/schema.h"
+#include "results/trend_report.h"
 #include "results/store.h"
 
 namespace aor::results {
@@ -144,6 +146,38 @@ TEST(ResultsStore, HistoryComesBackInCommitOrderWhateverTheRecordingOrder) {
   ASSERT_EQ(since.size(), 1u);
   EXPECT_EQ(since[0].commits.size(), 2u);
   EXPECT_THROW(commitPosition(*db, "nowhere", "--since"), InputError);
+}
+
+TEST(ResultsStore, TrendIsTheSameWhateverOrderTheRunsWereRecordedIn) {
+  // 24 commits of 2 runs, x1.25 from commit 12; two stores get them in opposite orders, a commit's
+  // two runs in separate records.
+  std::vector<std::pair<CommitInfo, ReportInput>> runs;
+  for (int c = 0; c < 24; ++c)
+    for (int r = 0; r < 2; ++r) {
+      double noise = 1 + 0.004 * ((c * 7 + r * 3) % 5 - 2) + 1e-5 * (2 * c + r);
+      runs.push_back({commit("sha" + std::to_string(100 + c), c), report(fmt::format("r{}-{}", c, r), (c >= 12 ? 1.25 : 1.0) * noise)});
+    }
+  std::vector<std::string> json;
+  for (bool reversed : {false, true}) {
+    TempStore t;
+    t.file = t.folder / (reversed ? "reversed.sqlite" : "forward.sqlite");
+    auto db = openDatabase(t.file.string(), true);
+    migrate(*db);
+    for (size_t i = 0; i < runs.size(); ++i) {
+      const auto& [c, r] = runs[reversed ? runs.size() - 1 - i : i];
+      recordRuns(*db, {r}, c, {});
+    }
+    std::vector<TrendResult> results;
+    for (auto& h : loadHistory(*db, "", std::nullopt)) {
+      auto trend = findChangePoints(h, TrendOptions{});
+      results.push_back({std::move(h), std::move(trend)});
+    }
+    ASSERT_EQ(results.size(), 1u);
+    ASSERT_EQ(results[0].trend.changes.size(), 1u);
+    EXPECT_EQ(results[0].history.commits[results[0].trend.changes[0].firstCommit].sha, "sha112");
+    json.push_back(trendJson(results, TrendOptions{}).dump());
+  }
+  EXPECT_EQ(json[0], json[1]);
 }
 
 TEST(ResultsStore, DoublesRoundTripExactly) {
