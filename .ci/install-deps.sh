@@ -10,6 +10,9 @@ packages=(
   libsimdjson-dev  # bounded, linear-time JSON input (replay/capture/json_input.h)
   libre2-dev       # linear-time regular expressions for --ignore
   libnlopt-cxx-dev # derivative-free optimiser behind aoreplay tune (replay/tune/)
+  libssl-dev       # SHA-256 of captures and reports (the results store's keys)
+  libsqlitecpp-dev libsqlite3-dev libpqxx-dev  # aoreplay record/trend/export: the SQLite and PostgreSQL stores
+  postgresql sqlite3  # the store tests: a real PostgreSQL server (and psql), the sqlite3 shell for row counts
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz libgraphviz-dev  # report.html lays out the render graph with Graphviz's library

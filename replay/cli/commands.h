@@ -26,6 +26,9 @@ void registerTechniquesCommand(CLI::App& app);
 void registerAbCommand(CLI::App& app);
 void registerImportCommand(CLI::App& app);
 void registerTuneCommand(CLI::App& app);
+void registerRecordCommand(CLI::App& app);
+void registerTrendCommand(CLI::App& app);
+void registerExportCommand(CLI::App& app);
 int runSelected(CLI::App& app);
 
 }  // namespace aor::cli

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   aor::cli::registerAbCommand(app);
   aor::cli::registerImportCommand(app);
   aor::cli::registerTuneCommand(app);
+  aor::cli::registerRecordCommand(app);
+  aor::cli::registerTrendCommand(app);
+  aor::cli::registerExportCommand(app);
   try {
     app.parse(argc, argv);
     return aor::cli::runSelected(app);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "capture/content_hash.h"
 #include "capture/image_io.h"
 #include "blocks/pass_names.h"
 #include "report/stats.h"
@@ -87,7 +88,10 @@ void writeDebugImage(const fs::path& outDir, int frameIndex, const DebugImage& v
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result) {
   nlohmann::json report;
   report["tool"] = "aoreplay";
-  report["capture"] = {{"path", capture.folder.string()}, {"name", capture.name}, {"width", capture.width},
+  report["tool_version"] = aoreplayVersion();
+  // content_sha256 keys the run's series in a results store (aoreplay record), wherever the capture lies.
+  report["capture"] = {{"path", capture.folder.string()}, {"name", capture.name},
+                       {"content_sha256", captureContentSha256(capture)}, {"width", capture.width},
                        {"height", capture.height}, {"frames", capture.frames.size()},
                        {"has_normals", capture.hasNormals}, {"has_depth2", capture.hasDepth2}};
   report["device"] = {{"name", result.device.name}, {"driver", result.device.driver}, {"api_version", result.device.apiVersion}};
