@@ -9,6 +9,7 @@ packages=(
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpng-dev
   libsimdjson-dev  # bounded, linear-time JSON input (replay/capture/json_input.h)
   libre2-dev       # linear-time regular expressions for --ignore
+  libshaderc-dev   # user techniques' GLSL compiled at run time (replay/techniques/user/)
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz

@@ -19,6 +19,7 @@ void registerDevicesCommand(CLI::App& app);
 void registerCompareCommand(CLI::App& app);
 void registerSweepCommand(CLI::App& app, const Technique& help);
 void registerTechniquesCommand(CLI::App& app);
+void registerTechniqueHeaderCommand(CLI::App& app);
 void registerAbCommand(CLI::App& app);
 void registerImportCommand(CLI::App& app);
 int runSelected(CLI::App& app);
