@@ -10,6 +10,7 @@ packages=(
   libsimdjson-dev  # bounded, linear-time JSON input (replay/capture/json_input.h)
   libre2-dev       # linear-time regular expressions for --ignore
   libshaderc-dev   # user techniques' GLSL compiled at run time (replay/techniques/user/)
+  glslc            # the offline compile of a user technique's shader that FORMAT.md shows (tests/gpu/user_technique_test.cpp)
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz

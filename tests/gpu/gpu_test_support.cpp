@@ -190,4 +190,29 @@ int cutFrame(const Capture& capture) {
   return -1;
 }
 
+// User techniques' compiled shaders go to the build tree, never to the user's ~/.cache; children
+// (runAoreplay) inherit it.
+const bool kTestShaderCache = [] {
+  ::setenv("AOREPLAY_SHADER_CACHE", (std::filesystem::path(AOR_BINARY_DIR) / "test-scratch" / "shader-cache").c_str(), 0);
+  return true;
+}();
+
+std::vector<std::string> exampleTechniqueFiles() {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(AOR_SOURCE_DIR) / "examples" / "techniques"))
+    if (std::filesystem::exists(entry.path() / "technique.json")) files.push_back((entry.path() / "technique.json").string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::string> coveredTechniques() {
+  std::vector<std::string> out;
+  for (const Technique* t : userTechniques())
+    if (t->file.empty()) out.push_back(t->name);
+  for (const auto& file : exampleTechniqueFiles()) out.push_back(file);
+  return out;
+}
+
+std::string techniqueTestName(const std::string& techniqueArgument) { return findTechnique(techniqueArgument).name; }
+
 }  // namespace aor::test

@@ -235,7 +235,9 @@ CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passInd
   shaderc::CompileOptions options;
   options.SetTargetEnvironment(shaderc_target_env_vulkan, shaderc_env_version_vulkan_1_2);
   options.SetSourceLanguage(shaderc_source_language_glsl);
-  options.SetOptimizationLevel(shaderc_optimization_level_performance);
+  // No SPIR-V optimisation (as the build's glslangValidator compiles the built-ins): it would drop
+  // the bindings a shader never touches, and every binding of the header is bound. The driver
+  // optimises anyway.
   options.SetIncluder(std::make_unique<Includer>(spec, header, includes));
   auto result = compiler.CompileGlslToSpv(source, shaderc_compute_shader, display.c_str(), options);
   if (result.GetCompilationStatus() != shaderc_compilation_status_success)

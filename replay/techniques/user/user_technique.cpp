@@ -59,12 +59,15 @@ graph::ResourceId addLinearDepthPass(FrameBuilder& frame) {
   return out;
 }
 
-void addCopyPass(graph::RenderGraph& graph, const std::string& name, graph::ResourceId from, graph::ResourceId to) {
+// Copies this frame's final visibility into the history image next frame reads: nothing reads it
+// this frame, so the pass is a root, or the graph would cull it.
+void addHistoryCopyPass(graph::RenderGraph& graph, graph::ResourceId from, graph::ResourceId to) {
   graph.addPass(
-      name,
+      "history_copy",
       [&](graph::PassBuilder& b) {
         b.read(from, graph::Access::TransferRead);
         b.write(to, graph::Access::TransferWrite);
+        b.sideEffect();
       },
       [from, to](graph::PassContext& ctx) {
         const auto& src = ctx.image(from);
@@ -199,7 +202,7 @@ void addUserPasses(const UserTechnique& ut, FrameBuilder& frame, const Settings&
     blocks::DenoiseInput in{final, false, 1};
     in.ao = blocks::addSeed000Spatial(frame, in);
     final = blocks::addSeed000Temporal(frame, in);
-    if (history.current != graph::kNoResource) addCopyPass(g, "history_copy", final, history.current);
+    if (history.current != graph::kNoResource) addHistoryCopyPass(g, final, history.current);
   }
   frame.setOutput(final, OutputLayout::visibilityOnly());
 }
@@ -220,6 +223,7 @@ Technique makeTechnique(const UserTechnique& ut) {
   const UserTechniqueSpec& spec = ut.spec;
   Technique t;
   t.name = spec.name;
+  t.file = spec.display;
   t.seed = "";
   t.summary = fmt::format("user technique from {} ({} pass{}{})", spec.display, spec.passes.size(),
                           spec.passes.size() == 1 ? "" : "es", spec.denoise == UserDenoise::Seed000 ? ", then seed 000's denoisers" : "");
@@ -274,7 +278,7 @@ const Technique& loadUserTechnique(const std::string& path) {
     if (t->name == ut->spec.name)
       throw InputError(path, std::nullopt, "name",
                        fmt::format("'{}' is already the name of {}", t->name,
-                                   t->seed.empty() && t->summary.rfind("user technique", 0) == 0 ? t->summary : "a built-in technique"));
+                                   t->file.empty() ? std::string("a built-in technique") : "the technique of " + t->file));
   for (size_t p = 0; p < ut->spec.passes.size(); ++p) {
     ut->spirv.push_back(compileUserPass(ut->spec, p).spirv);
     ut->pipelineNames.push_back(fmt::format("user:{}#{}/{}", ut->spec.name, loaded().size(), ut->spec.passes[p].name));

@@ -310,7 +310,6 @@ void checkGraph(const Checker& c, const UserTechniqueSpec& spec) {
       if (std::find(builtins.begin(), builtins.end(), write.name) != builtins.end())
         c.fail(wf, fmt::format("'{}' is a built-in input's name", write.name));
       if (writtenBy.count(write.name)) c.fail(wf, fmt::format("'{}' is already written by {}", write.name, writtenBy[write.name]));
-      if (ownReads.count(write.name)) c.fail(wf, fmt::format("'{}' is also read by this pass", write.name));
       writtenBy[write.name] = wf;
     }
   }
