@@ -2,8 +2,10 @@
 #include "aoreplay.glsl"
 #include "common.glsl"
 // Normal-oriented hemisphere SSAO: `samples` points in the hemisphere around the view-space
-// normal, cosine-distributed, up to `radius` away; a point is occluded when the depth buffer's
-// surface at its pixel lies in front of it, by more than the bias and within the radius.
+// normal, cosine-distributed, up to `radius` away. A point is occluded when the depth buffer's
+// surface at its pixel lies in front of it and rises above the pixel's tangent plane by more than
+// the bias, within the radius. The tangent-plane test (rather than depth alone) keeps a flat floor
+// unoccluded at grazing angles, where one pixel spans a long stretch of depth.
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -32,12 +34,14 @@ void main() {
     vec4 clip = frame.projection * vec4(s, 1.0);
     if (clip.w <= 0.0) continue;
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;
-    float scene = texture(in_linear_depth, uv).r;
-    if (scene <= 0.0) continue;
-    float sampleDist = -s.z;
-    float inRange = smoothstep(0.0, 1.0, frame.radius / max(abs(dist - scene), 1e-6));
-    occlusion += (scene < sampleDist - bias) ? inRange : 0.0;
+    if (!(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))) continue;  // also NaN
+    ivec2 q = ivec2(uv * frame.size);
+    float scene = texelFetch(in_linear_depth, q, 0).r;
+    if (scene <= 0.0 || scene >= -s.z) continue;  // sky, or the surface lies behind the sample
+    vec3 occluder = viewPosition(vec2(q), scene) - p;
+    float height = dot(occluder, n);
+    float inRange = smoothstep(0.0, 1.0, frame.radius / max(length(occluder), 1e-6));
+    occlusion += height > bias ? inRange : 0.0;
   }
   float visibility = clamp(1.0 - params.strength * occlusion / float(params.samples), 0.0, 1.0);
   imageStore(out_ao_raw, pixel, vec4(visibility));
