@@ -74,6 +74,7 @@ TEST(UserTechniqueExample, RunsValidatedTwiceBitIdenticalWithErrorAndTemporalMet
   json report = json::parse(std::ifstream(a / "report.json"));
   EXPECT_EQ(report["settings"]["technique"], "hemisphere_ssao");
   EXPECT_EQ(report["settings"]["samples"], 16);  // the default preset, medium
+  EXPECT_EQ(report["run"]["technique_file"], example());
   ASSERT_TRUE(report["metrics"].contains("error")) << report["metrics"].dump();
   EXPECT_GT(report["metrics"]["error"]["rmse"].get<double>(), 0.0);
   EXPECT_LT(report["metrics"]["error"]["rmse"].get<double>(), 0.3);
