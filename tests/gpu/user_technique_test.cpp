@@ -263,6 +263,31 @@ TEST(UserTechniqueCache, ASecondCompileIsACacheHitAndAChangedIncludeIsCompiledAn
   ::setenv("AOREPLAY_SHADER_CACHE", previous.c_str(), 1);
 }
 
+// Errors inside #included files name the included file and its line; an include outside the
+// technique's folder is refused like a shader path.
+TEST(UserTechniqueCache, ErrorsInIncludesNameTheIncludedFileAndIncludesStayInTheFolder) {
+  auto compileError = [](const std::string& shader, const std::map<std::string, std::string>& files) {
+    std::map<std::string, std::string> all = files;
+    all["shade.comp"] = shader;
+    auto file = writeTechnique("include-errors", onePassJson("includes", "", "[]"), all);
+    auto spec = loadUserTechniqueSpec(file, "technique.json");
+    try {
+      compileUserPass(spec, 0);
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field, "passes[0].shader");
+      return std::string(e.what());
+    }
+    return std::string("compiled");
+  };
+  std::string head = "#version 450\n#include \"aoreplay.glsl\"\n";
+  std::string body = "void main() { imageStore(out_ao, ivec2(gl_GlobalInvocationID.xy), vec4(kValue)); }\n";
+  std::string message = compileError(head + "#include \"lib/value.glsl\"\n" + body, {{"lib/value.glsl", "// value\nconst float kValue = ;\n"}});
+  EXPECT_NE(message.find("lib/value.glsl:2: error"), std::string::npos) << message;
+  message = compileError(head + "#include \"../outside.glsl\"\n" + body, {});
+  EXPECT_NE(message.find("shade.comp:3: error"), std::string::npos) << message;
+  EXPECT_NE(message.find("leaves the technique's folder"), std::string::npos) << message;
+}
+
 // History, seed 000's denoisers, a half-scale write and an enum parameter, replayed in process: the
 // output is half of last frame's final visibility (history holds 1.0 while it is invalid), so
 // frames 0, 1, 2 of a static capture give 0.5, 0.25, 0.125 with the denoisers off (spatial=0,
