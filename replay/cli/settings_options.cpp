@@ -48,7 +48,10 @@ const Technique& techniqueForHelp(int argc, const char* const* argv, const Techn
 void SettingsOptions::add(CLI::App& command, const Technique& help) {
   std::vector<std::string> names;
   for (const auto* t : userTechniques()) names.push_back(t->name);
-  command.add_option("--technique", technique, fmt::format("{} (aoreplay techniques lists them)", fmt::join(names, ", ")))
+  command.add_option("--technique", technique,
+                     fmt::format("{} (aoreplay techniques lists them), or a user technique's technique.json "
+                                 "(a value with '/' or ending in .json; techniques/FORMAT.md)",
+                                 fmt::join(names, ", ")))
       ->capture_default_str();
   command.add_option("--preset", preset, fmt::format("presets of {}: {}", help.name, presetTable(help)));
   command.add_option("--set", assignments,
