@@ -1,6 +1,6 @@
 #include "techniques/user/user_technique.h"
 
-#include <cstring>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -116,6 +116,73 @@ History declareHistory(FrameBuilder& frame, VkFormat format) {
   return h;
 }
 
+// The uniform buffers of one frame: each pass's `frame` block and the `params` block.
+struct Constants {
+  std::vector<graph::ResourceId> frameBlocks;  // per pass
+  graph::ResourceId params = graph::kNoResource;
+};
+
+// Fills the blocks with vkCmdUpdateBuffer: recorded into the frame's command buffer, so frames in
+// flight never share them; a block whose pass is culled is neither written nor allocated.
+Constants addConstantsPass(FrameBuilder& frame, const Settings& settings, const UserTechniqueSpec& spec) {
+  auto& g = frame.graph();
+  std::vector<double> values;
+  for (const auto& p : spec.parameters) values.push_back(settings.value(p.key));
+  auto params = std::make_shared<std::vector<uint32_t>>(userParamsBlock(spec, values));
+  Constants c;
+  if (!spec.parameters.empty()) c.params = g.createBuffer("params", {params->size() * 4});
+  std::vector<std::pair<graph::ResourceId, UserFrameBlock>> blocks;
+  for (const auto& pass : spec.passes) {
+    c.frameBlocks.push_back(g.createBuffer(pass.name + ".frame", {sizeof(UserFrameBlock)}));
+    blocks.emplace_back(c.frameBlocks.back(), frameBlock(frame, settings, sizeOf(frame, pass.writes[0])));
+  }
+  g.addPass(
+      "constants",
+      [&](graph::PassBuilder& b) {
+        for (const auto& [id, block] : blocks) b.writeIfRead(id, graph::Access::ClearWrite);
+        if (c.params != graph::kNoResource) b.writeIfRead(c.params, graph::Access::ClearWrite);
+      },
+      [blocks, paramsBuffer = c.params, params](graph::PassContext& ctx) {
+        for (const auto& [id, block] : blocks)
+          if (ctx.has(id)) vkCmdUpdateBuffer(ctx.cmd, ctx.buffer(id).buffer, 0, sizeof(block), &block);
+        if (paramsBuffer != graph::kNoResource && ctx.has(paramsBuffer))
+          vkCmdUpdateBuffer(ctx.cmd, ctx.buffer(paramsBuffer).buffer, 0, params->size() * 4, params->data());
+      });
+  return c;
+}
+
+// One pass of the file: its resources bound in the generated header's order, one invocation per
+// pixel of its first write.
+void addUserPass(FrameBuilder& frame, const UserTechnique& ut, size_t p, const Constants& constants,
+                 const std::map<std::string, graph::ResourceId>& images,
+                 const std::function<graph::ResourceId(const std::string&)>& input) {
+  const UserPass& pass = ut.spec.passes[p];
+  std::vector<Bind> binds;
+  for (const auto& b : userPassBindings(ut.spec, pass)) {
+    switch (b.kind) {
+      case UserBinding::Kind::Frame: binds.emplace_back(constants.frameBlocks[p]); break;
+      case UserBinding::Kind::Params: binds.emplace_back(constants.params); break;
+      case UserBinding::Kind::Read: binds.emplace_back(input(b.image)); break;
+      case UserBinding::Kind::Write: binds.emplace_back(images.at(b.image)); break;
+    }
+  }
+  glm::uvec2 size = sizeOf(frame, pass.writes[0]);
+  ShaderCode code{ut.pipelineNames[p], ut.spirv[p]};
+  auto& pipelines = frame.pipelines();
+  frame.graph().addPass(
+      pass.name,
+      [&](graph::PassBuilder& b) {
+        b.read(constants.frameBlocks[p], graph::Access::UniformRead);
+        if (constants.params != graph::kNoResource) b.read(constants.params, graph::Access::UniformRead);
+        for (const auto& r : pass.reads) b.read(input(r));
+        for (const auto& w : pass.writes) b.write(images.at(w.name));
+      },
+      [&pipelines, code, binds, size](graph::PassContext& ctx) {
+        const auto& pipeline = pipelines.get(code);
+        dispatchCompute(ctx, pipeline, binds, nullptr, 0, groupsFor(pipeline, size.x, size.y));
+      });
+}
+
 void addUserPasses(const UserTechnique& ut, FrameBuilder& frame, const Settings& settings) {
   const UserTechniqueSpec& spec = ut.spec;
   auto& g = frame.graph();
@@ -142,58 +209,8 @@ void addUserPasses(const UserTechnique& ut, FrameBuilder& frame, const Settings&
     return id;
   };
 
-  // The `frame` block of every pass and `params`, recorded into the command buffer by one pass so
-  // frames in flight never share them.
-  std::vector<double> values;
-  for (const auto& p : spec.parameters) values.push_back(settings.value(p.key));
-  auto params = std::make_shared<std::vector<uint32_t>>(userParamsBlock(spec, values));
-  graph::ResourceId paramsBuffer = spec.parameters.empty() ? graph::kNoResource
-                                                           : g.createBuffer("params", {params->size() * 4});
-  std::vector<std::pair<graph::ResourceId, UserFrameBlock>> frameBlocks;
-  for (const auto& pass : spec.passes) {
-    glm::uvec2 size = sizeOf(frame, pass.writes[0]);
-    frameBlocks.emplace_back(g.createBuffer(pass.name + ".frame", {sizeof(UserFrameBlock)}), frameBlock(frame, settings, size));
-  }
-  g.addPass(
-      "constants",
-      [&](graph::PassBuilder& b) {
-        for (const auto& [id, block] : frameBlocks) b.writeIfRead(id, graph::Access::ClearWrite);
-        if (paramsBuffer != graph::kNoResource) b.writeIfRead(paramsBuffer, graph::Access::ClearWrite);
-      },
-      [frameBlocks, paramsBuffer, params](graph::PassContext& ctx) {
-        for (const auto& [id, block] : frameBlocks)
-          if (ctx.has(id)) vkCmdUpdateBuffer(ctx.cmd, ctx.buffer(id).buffer, 0, sizeof(block), &block);
-        if (paramsBuffer != graph::kNoResource && ctx.has(paramsBuffer))
-          vkCmdUpdateBuffer(ctx.cmd, ctx.buffer(paramsBuffer).buffer, 0, params->size() * 4, params->data());
-      });
-
-  auto& pipelines = frame.pipelines();
-  for (size_t p = 0; p < spec.passes.size(); ++p) {
-    const UserPass& pass = spec.passes[p];
-    std::vector<Bind> binds;
-    for (const auto& b : userPassBindings(spec, pass)) {
-      switch (b.kind) {
-        case UserBinding::Kind::Frame: binds.emplace_back(frameBlocks[p].first); break;
-        case UserBinding::Kind::Params: binds.emplace_back(paramsBuffer); break;
-        case UserBinding::Kind::Read: binds.emplace_back(input(b.image)); break;
-        case UserBinding::Kind::Write: binds.emplace_back(images.at(b.image)); break;
-      }
-    }
-    glm::uvec2 size = sizeOf(frame, pass.writes[0]);
-    ShaderCode code{ut.pipelineNames[p], ut.spirv[p]};
-    g.addPass(
-        pass.name,
-        [&](graph::PassBuilder& b) {
-          b.read(frameBlocks[p].first, graph::Access::UniformRead);
-          if (paramsBuffer != graph::kNoResource) b.read(paramsBuffer, graph::Access::UniformRead);
-          for (const auto& r : pass.reads) b.read(input(r));
-          for (const auto& w : pass.writes) b.write(images.at(w.name));
-        },
-        [&pipelines, code, binds, size](graph::PassContext& ctx) {
-          const auto& pipeline = pipelines.get(code);
-          dispatchCompute(ctx, pipeline, binds, nullptr, 0, groupsFor(pipeline, size.x, size.y));
-        });
-  }
+  Constants constants = addConstantsPass(frame, settings, spec);
+  for (size_t p = 0; p < spec.passes.size(); ++p) addUserPass(frame, ut, p, constants, images, input);
   for (const auto& pass : spec.passes)
     for (const auto& w : pass.writes) frame.debugView(w.name, images.at(w.name));
 
