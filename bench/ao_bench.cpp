@@ -11,7 +11,8 @@
 // bookkeeping is batched, so setting up Vulkan pipelines is not paid once per sample.
 // Names: PASS/TECHNIQUE/PRESET[/KEY:VALUE...]/WxH, and `pipeline` for the sum of the compute passes.
 //
-// Own flags (before Google Benchmark's): --technique=NAME[,NAME...] (default gtao)
+// Own flags (before Google Benchmark's): --technique=NAME[,NAME...] (default gtao; a value with
+// a '/' or ending in .json is a user technique's technique.json, techniques/FORMAT.md)
 // --sizes=320x180,640x360,1920x1080  --presets=NAME,... (default: every preset of each technique)
 // --extra=KEY=VALUE[;KEY=VALUE...] (repeatable: one more configuration per size, the default preset
 // with those assignments; e.g. --extra=bent=0 --extra=half_res=1 for gtao)

@@ -257,7 +257,20 @@ struct FileDescriptor {
   }
 };
 
-std::string readRegularFile(const fs::path& path, std::uint64_t maxBytes, const std::string& display) {
+}  // namespace
+
+json parseBoundedJson(std::string_view text, const JsonLimits& limits, const std::string& display) {
+  if (auto parsed = parseWithSimdjson(text, limits, display)) return std::move(*parsed);
+  return parseWithNlohmann(text, limits, display);
+}
+
+namespace detail {
+json parseBoundedJsonSlowly(std::string_view text, const JsonLimits& limits, const std::string& display) {
+  return parseWithNlohmann(text, limits, display);
+}
+}  // namespace detail
+
+std::string readBoundedText(const fs::path& path, std::uint64_t maxBytes, const std::string& display) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer (it is refused right after).
   FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC)};
   if (file.fd < 0) fail(display, "", fmt::format("cannot open: {}", std::strerror(errno)));
@@ -284,22 +297,9 @@ std::string readRegularFile(const fs::path& path, std::uint64_t maxBytes, const 
   return text;
 }
 
-}  // namespace
-
-json parseBoundedJson(std::string_view text, const JsonLimits& limits, const std::string& display) {
-  if (auto parsed = parseWithSimdjson(text, limits, display)) return std::move(*parsed);
-  return parseWithNlohmann(text, limits, display);
-}
-
-namespace detail {
-json parseBoundedJsonSlowly(std::string_view text, const JsonLimits& limits, const std::string& display) {
-  return parseWithNlohmann(text, limits, display);
-}
-}  // namespace detail
-
 json readBoundedJson(const fs::path& path, const JsonLimits& limits, const std::string& display) {
   const std::string name = display.empty() ? path.string() : display;
-  return parseBoundedJson(readRegularFile(path, limits.maxBytes, name), limits, name);
+  return parseBoundedJson(readBoundedText(path, limits.maxBytes, name), limits, name);
 }
 
 std::string quoteForMessage(std::string_view text, size_t maxChars) {

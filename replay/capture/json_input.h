@@ -29,6 +29,9 @@ struct JsonLimits {
 // `display` is how messages name the file (default: path as given).
 nlohmann::json readBoundedJson(const std::filesystem::path& path, const JsonLimits& limits,
                                const std::string& display = {});
+// A regular file's bytes, at most `maxBytes` (the checks readBoundedJson makes before parsing), for
+// other text a user points aoreplay at (a technique's shaders). Throws InputError naming `display`.
+std::string readBoundedText(const std::filesystem::path& path, std::uint64_t maxBytes, const std::string& display);
 // The same for text already in memory.
 nlohmann::json parseBoundedJson(std::string_view text, const JsonLimits& limits, const std::string& display);
 

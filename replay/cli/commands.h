@@ -23,6 +23,7 @@ void registerDevicesCommand(CLI::App& app);
 void registerCompareCommand(CLI::App& app);
 void registerSweepCommand(CLI::App& app, const Technique& help);
 void registerTechniquesCommand(CLI::App& app);
+void registerTechniqueHeaderCommand(CLI::App& app);
 void registerAbCommand(CLI::App& app);
 void registerImportCommand(CLI::App& app);
 void registerTuneCommand(CLI::App& app);

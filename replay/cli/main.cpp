@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   aor::cli::registerCompareCommand(app);
   aor::cli::registerSweepCommand(app, help);
   aor::cli::registerTechniquesCommand(app);
+  aor::cli::registerTechniqueHeaderCommand(app);
   aor::cli::registerAbCommand(app);
   aor::cli::registerImportCommand(app);
   aor::cli::registerTuneCommand(app);

@@ -49,7 +49,10 @@ void SettingsOptions::add(CLI::App& command, const Technique& help) {
   std::vector<std::string> names;
   for (const auto* t : userTechniques()) names.push_back(t->name);
   techniqueOption =
-      command.add_option("--technique", technique, fmt::format("{} (aoreplay techniques lists them)", fmt::join(names, ", ")))
+      command.add_option("--technique", technique,
+                         fmt::format("{} (aoreplay techniques lists them), or a user technique's technique.json "
+                                     "(a value with '/' or ending in .json; techniques/FORMAT.md)",
+                                     fmt::join(names, ", ")))
           ->capture_default_str();
   command.add_option("--settings", settingsFile,
                      "settings file (format aoreplay-settings, as `aoreplay tune` writes): technique, preset, keys and "

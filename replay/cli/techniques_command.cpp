@@ -46,6 +46,7 @@ nlohmann::json techniqueJson(const Technique& t) {
   nlohmann::json views = nlohmann::json::array();
   for (const auto& v : t.debugViews) views.push_back({{"name", v.name}, {"doc", v.doc}});
   return {{"name", t.name},
+          {"file", t.file},
           {"seed", t.seed},
           {"summary", t.summary},
           {"presets", presets},
@@ -78,9 +79,12 @@ std::string techniqueText(const Technique& t) {
 
 void registerTechniquesCommand(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
+  auto files = std::make_shared<std::vector<std::string>>();
   auto* cmd = app.add_subcommand("techniques", "list every technique: seed, presets, inputs, debug views and keys");
   cmd->add_flag("--json", *json, "as JSON");
-  handlers()["techniques"] = [json] {
+  cmd->add_option("--technique", *files, "a user technique's technique.json to list after the built-ins, repeatable");
+  handlers()["techniques"] = [json, files] {
+    for (const auto& file : *files) findTechnique(file);  // loaded (and checked): listed below
     if (*json) {
       nlohmann::json list = nlohmann::json::array();
       for (const auto* t : userTechniques()) list.push_back(techniqueJson(*t));

@@ -79,7 +79,7 @@ BoundResource bindOne(graph::PassContext& ctx, const ShaderBinding& binding, con
 
 }  // namespace
 
-void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<Bind> bindings,
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::span<const Bind> bindings,
                      const void* pushConstants, size_t pushBytes, DispatchGroups groups) {
   const auto& declared = pipeline.shader.bindings;
   if (bindings.size() != declared.size())

@@ -4,6 +4,7 @@
 // executor's. dispatchCompute binds a pass's resources to its pipeline by the pipeline's reflected
 // bindings, in the views and layouts the graph's barriers left.
 #include <initializer_list>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -55,8 +56,12 @@ struct Bind {
 // the pass declared (a storage image or buffer a storage access, a sampler a sampled read, a uniform
 // buffer a uniform read) and the shader's type for it; a mismatch is a logic error naming both.
 // `pushConstants` must hold the shader's push-constant block (its size is reflected).
-void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<Bind> bindings,
+void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::span<const Bind> bindings,
                      const void* pushConstants, size_t pushBytes, DispatchGroups groups);
+inline void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::initializer_list<Bind> bindings,
+                            const void* pushConstants, size_t pushBytes, DispatchGroups groups) {
+  dispatchCompute(ctx, pipeline, std::span<const Bind>(bindings.begin(), bindings.size()), pushConstants, pushBytes, groups);
+}
 
 // The same over a grid of invocations (one per pixel, usually), in whole workgroups.
 template <typename Constants>

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
+#include "techniques/user/user_technique.h"
 
 namespace aor {
 namespace {
@@ -28,6 +29,7 @@ std::vector<const Technique*> userTechniques() {
 }
 
 const Technique& findTechnique(std::string_view name) {
+  if (isTechniquePath(name)) return loadUserTechnique(std::string(name));
   for (const auto* t : registry())
     if (t->name == name) return *t;
   std::vector<std::string> names;

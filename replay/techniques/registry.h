@@ -9,8 +9,9 @@ namespace aor {
 
 // Every technique a user can name, in registration order.
 std::vector<const Technique*> userTechniques();
-// By name: a built-in, or one a test registered. Throws InputError (field --technique) listing the
-// user techniques.
+// By name: a built-in, or one a test registered; a value containing '/' or ending in ".json" is a
+// user technique's technique.json (techniques/user/user_technique.h), loaded on first use. Throws
+// InputError (field --technique) listing the user techniques, or naming the file and key.
 const Technique& findTechnique(std::string_view name);
 // Tests only: adds a technique (testOnly ones are never listed to users). The pointer must outlive
 // the program's use of it.

@@ -80,6 +80,7 @@ struct Technique {
   std::vector<DebugView> debugViews;
   AccuracyBounds bounds;
   bool testOnly = false;  // registered by tests, never listed to users
+  std::string file;       // a user technique's technique.json as --technique named it; empty for built-ins
 
   // Adds the technique's passes to the frame (after the shared front) and sets its output.
   std::function<void(FrameBuilder& frame, const Settings& settings)> addPasses;

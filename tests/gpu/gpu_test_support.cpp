@@ -1,6 +1,9 @@
 #include "gpu_test_support.h"
 
+#include "capture/input_error.h"
+
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -188,6 +191,40 @@ int cutFrame(const Capture& capture) {
   for (size_t i = 1; i < capture.frames.size(); ++i)
     if (capture.frames[i].cut) return int(i);
   return -1;
+}
+
+// User techniques' compiled shaders go to the build tree, never to the user's ~/.cache; children
+// (runAoreplay) inherit it.
+const bool kTestShaderCache = [] {
+  ::setenv("AOREPLAY_SHADER_CACHE", (std::filesystem::path(AOR_BINARY_DIR) / "test-scratch" / "shader-cache").c_str(), 0);
+  return true;
+}();
+
+std::vector<std::string> exampleTechniqueFiles() {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(AOR_SOURCE_DIR) / "examples" / "techniques"))
+    if (std::filesystem::exists(entry.path() / "technique.json")) files.push_back((entry.path() / "technique.json").string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::string> coveredTechniques() {
+  std::vector<std::string> out;
+  for (const Technique* t : userTechniques())
+    if (t->file.empty()) out.push_back(t->name);
+  for (const auto& file : exampleTechniqueFiles()) out.push_back(file);
+  return out;
+}
+
+std::string techniqueTestName(const std::string& techniqueArgument) {
+  try {
+    return findTechnique(techniqueArgument).name;
+  } catch (const InputError&) {  // a broken example: its tests run (and fail with the error) under its folder's name
+    std::string name = std::filesystem::path(techniqueArgument).parent_path().filename().string();
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+  }
 }
 
 }  // namespace aor::test

@@ -61,6 +61,14 @@ struct CommandResult {
 // Runs the aoreplay binary with `arguments` (already quoted) and optional environment prefix.
 CommandResult runAoreplay(const std::string& arguments, const std::string& environment = "");
 
+// The shipped example user techniques (examples/techniques/*/technique.json), absolute.
+std::vector<std::string> exampleTechniqueFiles();
+// What the suites that cover every technique run: each built-in's name, then each example's file
+// (a --technique value either way).
+std::vector<std::string> coveredTechniques();
+// A test name for a --technique value: the technique's name.
+std::string techniqueTestName(const std::string& techniqueArgument);
+
 bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b);
 
 // Default settings without the spatial and temporal passes: the read-back is GTAO's own output.

@@ -21,11 +21,8 @@ using json = nlohmann::json;
 
 fs::path shipped(const std::string& name) { return fs::path(AOR_SOURCE_DIR) / "captures" / name; }
 
-std::vector<std::string> techniqueNames() {
-  std::vector<std::string> names;
-  for (const Technique* t : userTechniques()) names.push_back(t->name);
-  return names;
-}
+// Every built-in by name and every shipped example user technique by its file.
+std::vector<std::string> techniqueNames() { return coveredTechniques(); }
 
 class EveryTechnique : public ::testing::TestWithParam<std::string> {};
 
@@ -37,7 +34,7 @@ TEST_P(EveryTechnique, EveryPresetRunsWithValidationClean) {
   for (const auto& preset : presets) {
     fs::path out = scratchDir("validate-" + t.name + "-" + preset) / "out";
     auto r = runAoreplay(fmt::format("run {} --technique {} {} --frames 0:3 --validate --no-images --out {}",
-                                     shipped("boxes-strafe").string(), t.name, preset.empty() ? "" : "--preset " + preset,
+                                     shipped("boxes-strafe").string(), GetParam(), preset.empty() ? "" : "--preset " + preset,
                                      out.string()));
     EXPECT_EQ(r.exitCode, 0) << t.name << " " << preset << "\n" << r.output;
     EXPECT_NE(r.output.find("validation: 0 messages"), std::string::npos) << t.name << " " << preset << "\n" << r.output;
@@ -48,7 +45,7 @@ TEST_P(EveryTechnique, OutputsAreBitIdenticalWhateverTheLavapipeThreadCount) {
   const Technique& t = findTechnique(GetParam());
   auto runWith = [&](int threads) {
     fs::path out = scratchDir(fmt::format("threads-{}-{}", t.name, threads)) / "out";
-    auto r = runAoreplay(fmt::format("run {} --technique {} --frames 0:3 --out {}", shipped("boxes-strafe").string(), t.name,
+    auto r = runAoreplay(fmt::format("run {} --technique {} --frames 0:3 --out {}", shipped("boxes-strafe").string(), GetParam(),
                                      out.string()),
                          fmt::format("LP_NUM_THREADS={}", threads));
     EXPECT_EQ(r.exitCode, 0) << r.output;
@@ -65,7 +62,7 @@ TEST_P(EveryTechnique, OutputsAreBitIdenticalWhateverTheLavapipeThreadCount) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registered, EveryTechnique, ::testing::ValuesIn(techniqueNames()),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const ::testing::TestParamInfo<std::string>& info) { return techniqueTestName(info.param); });
 
 // The keys each technique must show, written by hand: a key dropped from the declarations, or a
 // place that lists keys from a list of its own, fails here.
@@ -75,10 +72,25 @@ const std::map<std::string, std::vector<std::string>> kExpectedKeys = {
     {"sao",
      {"radius", "bias", "intensity", "samples", "spiral_turns", "blur_radius", "blur_step", "edge_sharpness", "csz32",
       "dual_layer", "temporal"}},
+    {"hemisphere_ssao", {"radius", "samples", "strength", "bias", "blur"}},  // examples/techniques/hemisphere_ssao
 };
 
+// The --technique value of a technique in kExpectedKeys: a built-in's name, an example's file.
+std::string techniqueArgument(const std::string& name) {
+  for (const auto& file : exampleTechniqueFiles())
+    if (findTechnique(file).name == name) return file;
+  return name;
+}
+
+// `techniques --json` lists the built-ins, and user techniques named with --technique.
+std::string exampleOptions() {
+  std::string options;
+  for (const auto& file : exampleTechniqueFiles()) options += " --technique " + file;
+  return options;
+}
+
 TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
-  auto r = runAoreplay("techniques --json");
+  auto r = runAoreplay("techniques --json" + exampleOptions());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json list = json::parse(r.output)["techniques"];
   std::set<std::string> listed;
@@ -118,7 +130,7 @@ TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
 
 TEST(TechniqueKeys, RunHelpListsTheKeysOfTheTechniqueNamed) {
   for (const auto& [name, keys] : kExpectedKeys) {
-    auto r = runAoreplay(name == "gtao" ? "run --help" : fmt::format("run --technique {} --help", name));
+    auto r = runAoreplay(name == "gtao" ? "run --help" : fmt::format("run --technique {} --help", techniqueArgument(name)));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find(fmt::format("Keys of technique {}", name)), std::string::npos) << r.output;
     for (const auto& key : keys) EXPECT_NE(r.output.find("\n  " + key + " "), std::string::npos) << name << ": " << key;
@@ -132,15 +144,16 @@ TEST(TechniqueKeys, ReportSettingsAndSweepColumnsHoldEveryKey) {
   auto capture = generatedCapture("boxes", "orbit", 32, 18, 2);
   for (const auto& [name, keys] : kExpectedKeys) {
     fs::path out = scratchDir("keys-" + name) / "out";
-    auto r = runAoreplay(fmt::format("run {} --technique {} --no-images --out {}", capture.string(), name, out.string()));
+    auto r = runAoreplay(fmt::format("run {} --technique {} --no-images --out {}", capture.string(), techniqueArgument(name),
+                                     out.string()));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     json settings = json::parse(std::ifstream(out / "report.json"))["settings"];
     for (const auto& key : keys) EXPECT_TRUE(settings.contains(key)) << name << " report.json lacks " << key;
     EXPECT_EQ(settings.size(), keys.size() + 1) << settings.dump() << " (the keys and `technique`)";
   }
   fs::path sweep = scratchDir("keys-sweep") / "out";
-  auto r = runAoreplay(fmt::format("sweep {} --presets low --grid technique=gtao,reference,sao --repeat 1 --warmup 0 --out {}",
-                                   capture.string(), sweep.string()));
+  auto r = runAoreplay(fmt::format("sweep {} --presets low --grid technique=gtao,reference,sao,{} --repeat 1 --warmup 0 --out {}",
+                                   capture.string(), techniqueArgument("hemisphere_ssao"), sweep.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::string csv = readText(sweep / "sweep.csv");
   std::string header = csv.substr(0, csv.find('\n'));

@@ -1,0 +1,251 @@
+#include "techniques/user/shader_compiler.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <shaderc/shaderc.hpp>
+
+#include "capture/input_error.h"
+#include "capture/json_input.h"
+#include "techniques/user/user_header.h"
+#include "vk/shader_reflection.h"
+
+#ifndef AOR_SHADERC_VERSION
+#define AOR_SHADERC_VERSION "unknown"
+#endif
+
+namespace aor {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kHeaderName = "aoreplay.glsl";
+constexpr uint64_t kMaxSourceBytes = 4u << 20;
+constexpr size_t kMaxIncludeDepth = 32;
+constexpr const char* kCacheMagic = "aoreplay-spirv-cache 1";
+
+// 64-bit FNV-1a: a cache key, not a defence (a colliding entry is still checked by reflection).
+uint64_t fnv1a(std::string_view data, uint64_t hash = 0xcbf29ce484222325ull) {
+  for (unsigned char c : data) {
+    hash ^= c;
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+std::string hex(uint64_t v) { return fmt::format("{:016x}", v); }
+
+// How messages name a file of the technique: the technique's path as given, then the file's.
+std::string displayOf(const UserTechniqueSpec& spec, const std::string& relative) {
+  fs::path folder = fs::path(spec.display).parent_path();
+  return folder.empty() ? relative : (folder / relative).string();
+}
+
+// The sources one compile read besides the header: (absolute path, text).
+using Sources = std::map<std::string, std::string>;
+
+class Includer : public shaderc::CompileOptions::IncluderInterface {
+ public:
+  Includer(const UserTechniqueSpec& spec, std::string header, Sources& read) : spec_(spec), header_(std::move(header)), read_(read) {}
+
+  shaderc_include_result* GetInclude(const char* requested, shaderc_include_type, const char*, size_t depth) override {
+    auto* r = new Result;
+    try {
+      if (depth > kMaxIncludeDepth) throw std::runtime_error(fmt::format("#include nested deeper than {}", kMaxIncludeDepth));
+      if (std::string_view(requested) == kHeaderName) {
+        r->name = kHeaderName;
+        r->content = header_;
+      } else {
+        fs::path path = resolveTechniqueFile(spec_.folder, requested, "", "#include");
+        r->name = displayOf(spec_, fs::path(requested).lexically_normal().string());
+        r->content = readBoundedText(path, kMaxSourceBytes, r->name);
+        read_[path.string()] = r->content;
+      }
+    } catch (const std::exception& e) {
+      r->name.clear();
+      r->content = fmt::format("cannot include \"{}\": {}", requested, e.what());
+    }
+    r->result = {r->name.c_str(), r->name.size(), r->content.c_str(), r->content.size(), r};
+    return &r->result;
+  }
+  void ReleaseInclude(shaderc_include_result* data) override { delete static_cast<Result*>(data->user_data); }
+
+ private:
+  struct Result {
+    std::string name, content;
+    shaderc_include_result result{};
+  };
+  const UserTechniqueSpec& spec_;
+  std::string header_;
+  Sources& read_;
+};
+
+[[noreturn]] void fail(const UserTechniqueSpec& spec, size_t passIndex, const std::string& problem) {
+  throw InputError(spec.display, std::nullopt, fmt::format("passes[{}].shader", passIndex), problem);
+}
+
+// The first lines of a shader must be `#version N` (N >= 450) and `#include "aoreplay.glsl"`,
+// blank lines and // comments aside: the header's declarations must precede the shader's.
+void checkPreamble(const std::string& source, const std::string& display, const UserTechniqueSpec& spec, size_t passIndex) {
+  std::istringstream in(source);
+  std::string line;
+  int number = 0, step = 0;
+  while (step < 2 && std::getline(in, line)) {
+    ++number;
+    size_t start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos || line.compare(start, 2, "//") == 0) continue;
+    std::string text = line.substr(start);
+    while (!text.empty() && (text.back() == '\r' || text.back() == ' ' || text.back() == '\t')) text.pop_back();
+    if (step == 0) {
+      int version = 0;
+      if (std::sscanf(text.c_str(), "#version %d", &version) != 1 || version < 450)
+        fail(spec, passIndex, fmt::format("{}:{}: error: a shader begins with #version 450 (or higher), got {}", display, number,
+                                          quoteForMessage(text, 60)));
+    } else if (text != "#include \"aoreplay.glsl\"") {
+      fail(spec, passIndex, fmt::format("{}:{}: error: #include \"aoreplay.glsl\" must follow #version, got {}", display, number,
+                                        quoteForMessage(text, 60)));
+    }
+    ++step;
+  }
+  if (step < 2) fail(spec, passIndex, fmt::format("{}: error: a shader begins with #version 450 and #include \"aoreplay.glsl\"", display));
+}
+
+// What shaderc says, without its "N error(s) generated." summary line.
+std::string compileMessage(const std::string& message) {
+  std::string out;
+  std::istringstream in(message);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line.find("error generated") != std::string::npos || line.find("errors generated") != std::string::npos) continue;
+    out += (out.empty() ? "" : "; ") + line;
+  }
+  return out.empty() ? message : out;
+}
+
+// The interface of the SPIR-V must be the header's: no bindings of the shader's own, the header's workgroup.
+void checkInterface(const std::vector<uint32_t>& spirv, const UserTechniqueSpec& spec, size_t passIndex, const std::string& display) {
+  const UserPass& pass = spec.passes[passIndex];
+  ShaderInterface iface;
+  try {
+    iface = reflectComputeShader(spirv, display);
+  } catch (const std::runtime_error& e) {
+    fail(spec, passIndex, fmt::format("{}: error: {}", display, e.what()));
+  }
+  size_t expected = userPassBindings(spec, pass).size();
+  if (iface.bindings.size() > expected)
+    fail(spec, passIndex, fmt::format("{}: error: declares binding {} ('{}') of its own; bindings come from aoreplay.glsl", display,
+                                      expected, iface.bindings[expected].name));
+  if (iface.localSize[0] != pass.workgroup[0] || iface.localSize[1] != pass.workgroup[1] || iface.localSize[2] != 1)
+    fail(spec, passIndex, fmt::format("{}: error: declares its own workgroup size; it comes from \"workgroup\" in technique.json",
+                                      display));
+  if (iface.pushConstantBytes != 0) fail(spec, passIndex, fmt::format("{}: error: declares push constants; use params", display));
+}
+
+// --- The disk cache: "aoreplay-spirv-cache 1\n", one "include HASH PATH" line per #included file,
+// "spirv N\n", then N words. An entry whose includes changed, or that cannot be read whole, is
+// compiled anew.
+std::optional<std::vector<uint32_t>> readCache(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string line;
+  if (!std::getline(in, line) || line != kCacheMagic) return std::nullopt;
+  while (std::getline(in, line)) {
+    if (line.rfind("include ", 0) == 0) {
+      std::string hash = line.substr(8, 16), path = line.size() > 25 ? line.substr(25) : "";
+      std::ifstream source(path, std::ios::binary);
+      if (!source) return std::nullopt;
+      std::string text((std::istreambuf_iterator<char>(source)), std::istreambuf_iterator<char>());
+      if (hex(fnv1a(text)) != hash) return std::nullopt;
+      continue;
+    }
+    size_t words = 0;
+    if (std::sscanf(line.c_str(), "spirv %zu", &words) != 1 || words == 0 || words > (16u << 20)) return std::nullopt;
+    std::vector<uint32_t> code(words);
+    if (!in.read(reinterpret_cast<char*>(code.data()), std::streamsize(words * 4))) return std::nullopt;
+    if (code[0] != 0x07230203u) return std::nullopt;
+    return code;
+  }
+  return std::nullopt;
+}
+
+void writeCache(const fs::path& file, const Sources& includes, const std::vector<uint32_t>& code) {
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  if (ec) return;  // a cache: without one every run compiles
+  fs::path temporary = file;
+  temporary += fmt::format(".{}.tmp", ::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return;
+    out << kCacheMagic << "\n";
+    for (const auto& [path, text] : includes) out << "include " << hex(fnv1a(text)) << " " << path << "\n";
+    out << "spirv " << code.size() << "\n";
+    out.write(reinterpret_cast<const char*>(code.data()), std::streamsize(code.size() * 4));
+    if (!out) {
+      out.close();
+      fs::remove(temporary, ec);
+      return;
+    }
+  }
+  fs::rename(temporary, file, ec);  // atomic: a reader sees the old entry or the whole new one
+  if (ec) fs::remove(temporary, ec);
+}
+
+}  // namespace
+
+std::string shadercVersion() {
+  unsigned version = 0, revision = 0;
+  shaderc_get_spv_version(&version, &revision);
+  return fmt::format("shaderc {}, SPIR-V {}.{} rev {}", AOR_SHADERC_VERSION, version >> 16, (version >> 8) & 0xff, revision);
+}
+
+fs::path userShaderCacheFolder() {
+  if (const char* dir = std::getenv("AOREPLAY_SHADER_CACHE"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "aoreplay" / "shaders";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "aoreplay" / "shaders";
+  return {};
+}
+
+CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passIndex) {
+  const UserPass& pass = spec.passes[passIndex];
+  const std::string display = displayOf(spec, pass.shader.lexically_relative(spec.folder).string());
+  const std::string source = readBoundedText(pass.shader, kMaxSourceBytes, display);
+  checkPreamble(source, display, spec, passIndex);
+  const std::string header = userPassHeader(spec, pass);
+
+  const fs::path cacheFolder = userShaderCacheFolder();
+  uint64_t key = fnv1a(shadercVersion());
+  key = fnv1a(header, key);
+  key = fnv1a(pass.shader.string(), key);
+  key = fnv1a(source, key);
+  const fs::path cacheFile = cacheFolder.empty() ? fs::path() : cacheFolder / (hex(key) + ".spv");
+  if (!cacheFile.empty())
+    if (auto cached = readCache(cacheFile)) {
+      checkInterface(*cached, spec, passIndex, display);
+      return {std::move(*cached), true};
+    }
+
+  Sources includes;
+  shaderc::Compiler compiler;
+  shaderc::CompileOptions options;
+  options.SetTargetEnvironment(shaderc_target_env_vulkan, shaderc_env_version_vulkan_1_2);
+  options.SetSourceLanguage(shaderc_source_language_glsl);
+  // No SPIR-V optimisation (as the build's glslangValidator compiles the built-ins): it would drop
+  // the bindings a shader never touches, and every binding of the header is bound. The driver
+  // optimises anyway.
+  options.SetIncluder(std::make_unique<Includer>(spec, header, includes));
+  auto result = compiler.CompileGlslToSpv(source, shaderc_compute_shader, display.c_str(), options);
+  if (result.GetCompilationStatus() != shaderc_compilation_status_success)
+    fail(spec, passIndex, compileMessage(result.GetErrorMessage()));
+  std::vector<uint32_t> code(result.cbegin(), result.cend());
+  checkInterface(code, spec, passIndex, display);
+  if (!cacheFile.empty()) writeCache(cacheFile, includes, code);
+  return {std::move(code), false};
+}
+
+}  // namespace aor

@@ -1,0 +1,31 @@
+#pragma once
+// Compiles a user technique's pass to SPIR-V at run time with libshaderc: its shader, the pass's
+// generated aoreplay.glsl (techniques/user/user_header.h) and the technique's own #includes
+// (relative to its folder, the path rules of captures). The result is cached on disk by a hash of
+// the header, every source and the shaderc version, and checked against the header's interface.
+// A compile error is an InputError naming the shader's file and line.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "techniques/user/user_technique_spec.h"
+
+namespace aor {
+
+// "shaderc 2023.2, SPIR-V 1.6 rev 1": part of every cache key.
+std::string shadercVersion();
+
+// Where compiled shaders are kept: $AOREPLAY_SHADER_CACHE, else $XDG_CACHE_HOME/aoreplay/shaders,
+// else ~/.cache/aoreplay/shaders; empty when none can be named (nothing is cached then).
+std::filesystem::path userShaderCacheFolder();
+
+struct CompiledUserShader {
+  std::vector<uint32_t> spirv;
+  bool fromCache = false;
+};
+
+// The SPIR-V of `spec.passes[passIndex]`. Throws InputError.
+CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passIndex);
+
+}  // namespace aor
