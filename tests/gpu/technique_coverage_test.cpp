@@ -72,6 +72,9 @@ INSTANTIATE_TEST_SUITE_P(Registered, EveryTechnique, ::testing::ValuesIn(techniq
 const std::map<std::string, std::vector<std::string>> kExpectedKeys = {
     {"gtao", {"radius", "slices", "steps", "falloff", "power", "thin", "spatial", "temporal", "bent", "half_res"}},
     {"reference", {"radius", "falloff", "power", "thin", "bent"}},
+    {"xegtao", {"radius", "slices", "steps", "radius_multiplier", "falloff_range", "sample_distribution_power",
+                "thin_occluder_compensation", "final_value_power", "depth_mip_sampling_offset", "denoise_passes", "depth32",
+                "bent", "temporal"}},
 };
 
 TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
