@@ -118,7 +118,7 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
       s += minS;
       vec2 sampleOffset = s * omega;
       float mipLevel = clamp(log2(length(sampleOffset)) - pc.depthMipSamplingOffset, 0.0, float(kXeGtaoDepthMipLevels));
-      sampleOffset = round(sampleOffset) * pc.viewportPixelSize;  // snapped to pixel centres
+      sampleOffset = roundEven(sampleOffset) * pc.viewportPixelSize;  // snapped to pixel centres (HLSL round: halves to even)
       float shc0 = sampleHorizonCos(screenPos + sampleOffset, mipLevel, centre, viewVec, falloff, lowHorizonCos0);
       float shc1 = sampleHorizonCos(screenPos - sampleOffset, mipLevel, centre, viewVec, falloff, lowHorizonCos1);
       horizonCos0 = max(horizonCos0, shc0);

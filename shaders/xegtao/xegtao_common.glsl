@@ -31,7 +31,7 @@ vec4 xegtaoEdges(float centerZ, float leftZ, float rightZ, float topZ, float bot
 
 // XeGTAO_PackEdges: 2 bits a side (left in the top bits), as the unorm value the R8_UNORM image holds.
 float xegtaoPackEdges(vec4 edgesLRTB) {
-  edgesLRTB = round(clamp(edgesLRTB, 0.0, 1.0) * 2.9);
+  edgesLRTB = roundEven(clamp(edgesLRTB, 0.0, 1.0) * 2.9);  // HLSL round: halves to even
   return dot(edgesLRTB, vec4(64.0 / 255.0, 16.0 / 255.0, 4.0 / 255.0, 1.0 / 255.0));
 }
 
