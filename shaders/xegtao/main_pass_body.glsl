@@ -10,6 +10,7 @@ layout(constant_id = kXeGtaoSpecSteps) const int kSteps = 3;
 layout(constant_id = kXeGtaoSpecBent) const bool kBent = false;
 layout(constant_id = kXeGtaoSpecThin) const bool kThin = false;
 layout(constant_id = kXeGtaoSpecDepth32) const bool kDepth32 = false;
+layout(constant_id = kXeGtaoSpecSampleDistributionPower) const float kSampleDistributionPower = 2.0;
 
 layout(push_constant, scalar) uniform Push {
   XeGtaoConstants pc;
@@ -30,8 +31,11 @@ shared uint groupTaps[kXeGtaoDepthMipLevels];
 #include "xegtao_common.glsl"
 
 #ifdef XEGTAO_COUNT_TAPS
+bool countingThread = false;  // a thread of a pixel in the frame (not one past its edge)
 // The level a nearest-mipmap sampler reads for `lod` (rounded to nearest, within the chain).
-void countTap(float lod) { atomicAdd(groupTaps[clamp(int(floor(lod + 0.5)), 0, kXeGtaoDepthMipLevels - 1)], 1u); }
+void countTap(float lod) {
+  if (countingThread) atomicAdd(groupTaps[clamp(int(floor(lod + 0.5)), 0, kXeGtaoDepthMipLevels - 1)], 1u);
+}
 #else
 void countTap(float lod) {}
 #endif
@@ -114,7 +118,7 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
       float stepBaseNoise = float(slice + stepIndex * stepsPerSlice) * 0.6180339887498948482;  // R1
       float stepNoise = fract(noise.y + stepBaseNoise);
       float s = (stepIndex + stepNoise) / stepsPerSlice;
-      s = pow(s, pc.sampleDistributionPower);
+      s = pow(s, kSampleDistributionPower);
       s += minS;
       vec2 sampleOffset = s * omega;
       float mipLevel = clamp(log2(length(sampleOffset)) - pc.depthMipSamplingOffset, 0.0, float(kXeGtaoDepthMipLevels));
@@ -152,29 +156,36 @@ void main() {
   if (gl_LocalInvocationIndex < uint(kXeGtaoDepthMipLevels)) groupTaps[gl_LocalInvocationIndex] = 0u;
   barrier();
 #endif
+  // Straight-line code as XeGTAO's (no branch around the work): a thread past the edge computes
+  // its clamped pixel and stores nothing, a sky pixel computes and stores 1.
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   bool inside = pixel.x < pc.viewportSize.x && pixel.y < pc.viewportSize.y;
-  if (inside) {
-    vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
-    vec2 cornerPos = vec2(pixel) * pc.viewportPixelSize;
-    vec4 valuesUL = textureGather(depthMips, cornerPos);                    // x L, y centre, z T
-    vec4 valuesBR = textureGatherOffset(depthMips, cornerPos, ivec2(1, 1));  // x B, z R
-    float viewZ = valuesUL.y;
-    vec4 edges = xegtaoEdges(viewZ, valuesUL.x, valuesBR.z, valuesUL.z, valuesBR.x);
-    imageStore(workingEdges, pixel, vec4(xegtaoPackEdges(edges)));
+  pixel = min(pixel, pc.viewportSize - 1);
+#ifdef XEGTAO_COUNT_TAPS
+  countingThread = inside;
+#endif
+  vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
+  vec2 cornerPos = vec2(pixel) * pc.viewportPixelSize;
+  vec4 valuesUL = textureGather(depthMips, cornerPos);                    // x L, y centre, z T
+  vec4 valuesBR = textureGatherOffset(depthMips, cornerPos, ivec2(1, 1));  // x B, z R
+  float viewZ = valuesUL.y;
+  vec4 edges = xegtaoEdges(viewZ, valuesUL.x, valuesBR.z, valuesUL.z, valuesBR.x);
+  if (inside) imageStore(workingEdges, pixel, vec4(xegtaoPackEdges(edges)));
 
-    // Sky and invalid depth (the shared front's rule) occlude nothing: XeGTAO leaves them to the
-    // engine, which never shades them.
-    bool sky = linearViewDistance(texelFetch(screenDepth, pixel, 0).r, projection22, projection32, reversedDepth != 0u) <= 0.0;
-    vec3 normal = normalize(xegtaoFromToolView(imageLoad(viewNormals, pixel).xyz));  // LoadNormal normalises
-    viewZ *= kDepth32 ? kXeGtaoDepth32PullIn : kXeGtaoDepth16PullIn;  // against depth imprecision
-    vec3 centre = xegtaoViewPosition(screenPos, viewZ);
-    vec3 viewVec = normalize(-centre);
-    vec3 bentNormal = viewVec;
-    float visibility = 1.0;
-    if (!sky) visibility = horizonSearch(screenPos, centre, viewVec, normal, viewZ, xegtaoNoise(uvec2(pixel), uint(pc.noiseIndex)), bentNormal);
-    storeWorkingTerm(pixel, visibility, bentNormal);
+  vec3 normal = normalize(xegtaoFromToolView(imageLoad(viewNormals, pixel).xyz));  // LoadNormal normalises
+  viewZ *= kDepth32 ? kXeGtaoDepth32PullIn : kXeGtaoDepth16PullIn;  // against depth imprecision
+  vec3 centre = xegtaoViewPosition(screenPos, viewZ);
+  vec3 viewVec = normalize(-centre);
+  vec3 bentNormal;
+  float visibility = horizonSearch(screenPos, centre, viewVec, normal, viewZ, xegtaoNoise(uvec2(pixel), uint(pc.noiseIndex)), bentNormal);
+  // Sky and invalid depth (the shared front's rule) occlude nothing: XeGTAO leaves them to the
+  // engine, which never shades them.
+  bool sky = linearViewDistance(texelFetch(screenDepth, pixel, 0).r, projection22, projection32, reversedDepth != 0u) <= 0.0;
+  if (sky) {
+    visibility = 1.0;
+    bentNormal = viewVec;
   }
+  if (inside) storeWorkingTerm(pixel, visibility, bentNormal);
 #ifdef XEGTAO_COUNT_TAPS
   barrier();
   if (gl_LocalInvocationIndex < uint(kXeGtaoDepthMipLevels))

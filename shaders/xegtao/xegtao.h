@@ -12,7 +12,10 @@ AOR_CONST int kXeGtaoSpecSteps = 1;
 AOR_CONST int kXeGtaoSpecBent = 2;        // XE_GTAO_COMPUTE_BENT_NORMALS
 AOR_CONST int kXeGtaoSpecThin = 3;        // the thin-occluder falloff (thin_occluder_compensation > 0)
 AOR_CONST int kXeGtaoSpecDepth32 = 4;     // XE_GTAO_FP32_DEPTHS: the centre pull-in of 32-bit depths
-AOR_CONST int kXeGtaoSpecFinalPass = 5;   // denoiser: the last pass (full blur beta, output scale)
+// sample_distribution_power as a compile-time value (its float bits): pow(s, 2) then compiles to
+// s * s, as XeGTAO gets with XE_GTAO_USE_DEFAULT_CONSTANTS; a power per sample is most of the main
+// pass's arithmetic on a CPU device.
+AOR_CONST int kXeGtaoSpecSampleDistributionPower = 5;
 
 AOR_CONST int kXeGtaoDepthMipLevels = 5;         // XE_GTAO_DEPTH_MIP_LEVELS
 AOR_CONST uint kXeGtaoWorkgroupSize = 8u;        // XE_GTAO_NUMTHREADS_X/Y (the prefilter: 8x8 threads, 2x2 pixels each)

@@ -1,6 +1,7 @@
 // XeGTAO's three passes (vaGTAO.cpp's Compute, in this tool's render graph): prefilter, main pass,
 // denoise_passes x denoise; and the screen-radius debug pass.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "blocks/blocks.h"
@@ -131,7 +132,8 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
   std::vector<SpecializationValue> specialization{
       spec(shader::kXeGtaoSpecSlices, settings.slices), spec(shader::kXeGtaoSpecSteps, settings.steps),
       spec(shader::kXeGtaoSpecBent, settings.bent), spec(shader::kXeGtaoSpecThin, settings.thinOccluderCompensation > 0.0f),
-      spec(shader::kXeGtaoSpecDepth32, settings.depth32)};
+      spec(shader::kXeGtaoSpecDepth32, settings.depth32),
+      {uint32_t(shader::kXeGtaoSpecSampleDistributionPower), std::bit_cast<uint32_t>(settings.sampleDistributionPower)}};
   auto depth = frame.depth();
   auto normals = frame.viewNormals();
   auto& pipelines = frame.pipelines();
