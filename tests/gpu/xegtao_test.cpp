@@ -117,7 +117,8 @@ TEST(XeGtao, VisibilityIsInRangeAndSkyIsUnoccluded) {
 
 // Seed 002's audit and the issue: ports that compute the MIP level in UV units sample MIP 0 only.
 // At 1080p with the capture's radius XeGTAO's offsets reach 2^(3.3+1) pixels and beyond, so MIPs
-// 1-4 must get taps; the counts add up to every tap of every non-sky pixel.
+// 1-4 must get taps; the counts add up to every tap of every pixel (sky included: XeGTAO samples
+// there too).
 TEST(XeGtao, MipTapsReachTheCoarseLevelsAt1080p) {
   auto capture = generatedCapture("boxes", "orbit", 1920, 1080, 1);
   fs::path out = scratchDir("xegtao-mip-taps") / "out";
@@ -134,9 +135,8 @@ TEST(XeGtao, MipTapsReachTheCoarseLevelsAt1080p) {
   std::cout << "mip_taps at 1920x1080 (xegtao high): " << taps.dump() << "\n";
   EXPECT_GT(coarse, 0u) << "every tap on MIP 0: " << taps.dump();
   EXPECT_GT(double(coarse), 0.05 * double(total)) << taps.dump();
-  // high: 3 slices x 3 steps x 2 sides per non-sky pixel.
-  EXPECT_EQ(total % 18u, 0u) << taps.dump();
-  EXPECT_LE(total, 18ull * 1920 * 1080);
+  // high: 3 slices x 3 steps x 2 sides per pixel.
+  EXPECT_EQ(total, 18ull * 1920 * 1080) << taps.dump();
 }
 
 TEST(XeGtao, EveryDebugViewIsWritten) {
