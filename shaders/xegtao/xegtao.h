@@ -18,8 +18,7 @@ AOR_CONST int kXeGtaoSpecDepth32 = 4;     // XE_GTAO_FP32_DEPTHS: the centre pul
 AOR_CONST int kXeGtaoSpecSampleDistributionPower = 5;
 
 AOR_CONST int kXeGtaoDepthMipLevels = 5;         // XE_GTAO_DEPTH_MIP_LEVELS
-AOR_CONST uint kXeGtaoWorkgroupSize = 8u;        // XE_GTAO_NUMTHREADS_X/Y (the prefilter: 8x8 threads, 2x2 pixels each)
-AOR_CONST uint kXeGtaoPrefilterTile = 16u;       // pixels a side of one prefilter workgroup
+AOR_CONST uint kXeGtaoWorkgroupSize = 8u;        // XE_GTAO_NUMTHREADS_X/Y (the prefilter: 8x8 threads, 2x2 pixels each, 16x16 a group)
 AOR_CONST float kXeGtaoOcclusionTermScale = 1.5f;  // XE_GTAO_OCCLUSION_TERM_SCALE
 AOR_CONST float kXeGtaoDepth16PullIn = 0.99920f;   // centre depth moved towards the camera, R16F chain
 AOR_CONST float kXeGtaoDepth32PullIn = 0.99999f;   // the same, R32F chain
