@@ -20,7 +20,7 @@ const std::vector<float>& halfToFloat() {
   return table;
 }
 
-enum class Encoding { Half, Float, Unorm8, Snorm8, Uint32, Uint16, Unorm16 };
+enum class Encoding { Half, Float, Unorm8, Snorm8, Uint32, Uint16, Unorm16, Uint8 };
 struct FormatEncoding {
   VkFormat format;
   Encoding encoding;
@@ -34,6 +34,7 @@ constexpr FormatEncoding kEncodings[] = {
     {VK_FORMAT_R8G8B8A8_UNORM, Encoding::Unorm8, 4},    {VK_FORMAT_R8G8B8A8_SNORM, Encoding::Snorm8, 4},
     {VK_FORMAT_R8G8_SNORM, Encoding::Snorm8, 2},        {VK_FORMAT_R32_UINT, Encoding::Uint32, 1},
     {VK_FORMAT_R16_UINT, Encoding::Uint16, 1},          {VK_FORMAT_R16_UNORM, Encoding::Unorm16, 1},
+    {VK_FORMAT_R8_UINT, Encoding::Uint8, 1},
 };
 
 const FormatEncoding* encodingOf(VkFormat format) {
@@ -76,6 +77,9 @@ std::vector<float> decodeTexels(const void* data, VkFormat format, size_t texels
       break;
     case Encoding::Unorm16:
       for (size_t i = 0; i < n; ++i) out[i] = float(static_cast<const uint16_t*>(data)[i]) / 65535.0f;
+      break;
+    case Encoding::Uint8:
+      for (size_t i = 0; i < n; ++i) out[i] = float(static_cast<const uint8_t*>(data)[i]);
       break;
   }
   return out;

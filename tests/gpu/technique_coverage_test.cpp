@@ -69,6 +69,9 @@ INSTANTIATE_TEST_SUITE_P(Registered, EveryTechnique, ::testing::ValuesIn(techniq
 const std::map<std::string, std::vector<std::string>> kExpectedKeys = {
     {"gtao", {"radius", "slices", "steps", "falloff", "power", "thin", "spatial", "temporal", "bent", "half_res"}},
     {"reference", {"radius", "falloff", "power", "thin", "bent"}},
+    {"xegtao", {"radius", "slices", "steps", "radius_multiplier", "falloff_range", "sample_distribution_power",
+                "thin_occluder_compensation", "final_value_power", "depth_mip_sampling_offset", "denoise_passes", "depth32",
+                "bent", "temporal"}},
     {"sao",
      {"radius", "bias", "intensity", "samples", "spiral_turns", "blur_radius", "blur_step", "edge_sharpness", "csz32",
       "dual_layer", "temporal"}},
@@ -152,8 +155,10 @@ TEST(TechniqueKeys, ReportSettingsAndSweepColumnsHoldEveryKey) {
     EXPECT_EQ(settings.size(), keys.size() + 1) << settings.dump() << " (the keys and `technique`)";
   }
   fs::path sweep = scratchDir("keys-sweep") / "out";
-  auto r = runAoreplay(fmt::format("sweep {} --presets low --grid technique=gtao,reference,sao,{} --repeat 1 --warmup 0 --out {}",
-                                   capture.string(), techniqueArgument("hemisphere_ssao"), sweep.string()));
+  std::string techniques;
+  for (const auto& [name, keys] : kExpectedKeys) techniques += (techniques.empty() ? "" : ",") + techniqueArgument(name);
+  auto r = runAoreplay(fmt::format("sweep {} --presets low --grid technique={} --repeat 1 --warmup 0 --out {}",
+                                   capture.string(), techniques, sweep.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::string csv = readText(sweep / "sweep.csv");
   std::string header = csv.substr(0, csv.find('\n'));

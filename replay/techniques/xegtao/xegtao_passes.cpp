@@ -1,0 +1,217 @@
+// XeGTAO's three passes (vaGTAO.cpp's Compute, in this tool's render graph): prefilter, main pass,
+// denoise_passes x denoise; and the screen-radius debug pass.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "blocks/blocks.h"
+#include "blocks/camera.h"
+#include "graph/pass_context.h"
+#include "techniques/xegtao/xegtao_settings.h"
+
+namespace aor {
+namespace {
+
+SpecializationValue spec(int id, int value) { return {uint32_t(id), uint32_t(value)}; }
+
+constexpr uint32_t kMipTapsBytes = shader::kXeGtaoDepthMipLevels * sizeof(uint32_t);
+
+// Levels of the depth chain: XeGTAO's five, fewer where the frame is too small for them.
+uint32_t depthMipLevels(glm::uvec2 size) {
+  uint32_t levels = 1;
+  while (levels < uint32_t(shader::kXeGtaoDepthMipLevels) && (std::max(size.x, size.y) >> levels) > 0) ++levels;
+  return levels;
+}
+
+struct PrefilterPush {
+  shader::XeGtaoConstants c;
+  int32_t mipLevels;
+};
+
+struct MainPassPush {
+  shader::XeGtaoConstants c;
+  float projection22, projection32;  // the front's sky test on the capture's depth
+  uint32_t reversedDepth;
+};
+
+VkFormat aoTermFormat(bool bent) { return bent ? VK_FORMAT_R32_UINT : VK_FORMAT_R8_UINT; }
+
+// --debug mip_taps: a zeroed counter per level that the counting variant of the main pass adds to.
+graph::ResourceId addMipTapsBuffer(FrameBuilder& frame) {
+  auto taps = frame.graph().createBuffer("mip_taps", {kMipTapsBytes});
+  frame.graph().addPass(
+      "mip_taps_clear", [&](graph::PassBuilder& b) { b.write(taps, graph::Access::ClearWrite); },
+      [taps](graph::PassContext& ctx) { vkCmdFillBuffer(ctx.cmd, ctx.buffer(taps).buffer, 0, kMipTapsBytes, 0); });
+  return taps;
+}
+
+}  // namespace
+
+XeGtaoSettings xegtaoSettings(const Settings& s) {
+  XeGtaoSettings x;
+  x.radius = s.f(kRadiusKey);
+  x.slices = s.i("slices");
+  x.steps = s.i("steps");
+  x.radiusMultiplier = s.f("radius_multiplier");
+  x.falloffRange = s.f("falloff_range");
+  x.sampleDistributionPower = s.f("sample_distribution_power");
+  x.thinOccluderCompensation = s.f("thin_occluder_compensation");
+  x.finalValuePower = s.f("final_value_power");
+  x.depthMipSamplingOffset = s.f("depth_mip_sampling_offset");
+  x.denoisePasses = s.i("denoise_passes");
+  x.depth32 = s.b("depth32");
+  x.bent = s.b("bent");
+  x.temporal = s.f(blocks::kTemporalKey);
+  return x;
+}
+
+shader::XeGtaoConstants xegtaoConstants(const FrameCamera& camera, const XeGtaoSettings& settings) {
+  auto params = projectionParams(camera.projection, camera.width, camera.height);
+  shader::XeGtaoConstants c{};
+  c.viewportSize = {camera.width, camera.height};
+  c.viewportPixelSize = {1.0f / float(camera.width), 1.0f / float(camera.height)};
+  // This tool's distance = P32 / (d + P22) is XeGTAO's z = mul / (add - d) with mul = -P32, add = -P22
+  // (derived here, so XeGTAO's handedness fix-up of the two is not needed).
+  c.depthUnpackConsts = {-params.projection32, -params.projection22};
+  c.cameraTanHalfFov = glm::abs(params.ndcToViewMul);
+  // view.xy = dist * (ndc * mul + add) with ndc = 2 uv - 1; XeGTAO's axes point right and up with
+  // uv's origin at the top left, so mul.x > 0 and mul.y < 0 there: flip an axis that points the
+  // other way.
+  glm::vec2 signs{params.ndcToViewMul.x >= 0.0f ? 1.0f : -1.0f, params.ndcToViewMul.y >= 0.0f ? -1.0f : 1.0f};
+  c.viewAxisSigns = signs;
+  c.ndcToViewMul = 2.0f * params.ndcToViewMul * signs;
+  c.ndcToViewAdd = (params.ndcToViewAdd - params.ndcToViewMul) * signs;
+  c.ndcToViewMulXPixelSize = c.ndcToViewMul * c.viewportPixelSize;
+  c.effectRadius = settings.radius;
+  c.effectFalloffRange = settings.falloffRange;
+  c.radiusMultiplier = settings.radiusMultiplier;
+  c.padding0 = 0.0f;
+  c.finalValuePower = settings.finalValuePower;
+  c.denoiseBlurBeta = shader::kXeGtaoDenoiseBlurBeta;  // denoise_passes >= 1: XeGTAO's 1e4 (off) never applies
+  c.sampleDistributionPower = settings.sampleDistributionPower;
+  c.thinOccluderCompensation = settings.thinOccluderCompensation;
+  c.depthMipSamplingOffset = settings.depthMipSamplingOffset;
+  c.noiseIndex = int(camera.frameIndex % shader::kXeGtaoNoisePeriod);
+  return c;
+}
+
+graph::ResourceId addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings) {
+  glm::uvec2 size = frame.size();
+  uint32_t levels = depthMipLevels(size);
+  VkFormat format = settings.depth32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R16_SFLOAT;
+  auto mips = frame.graph().createImage("depth_mips", {size.x, size.y, format, levels});
+  PrefilterPush push{xegtaoConstants(frame.camera(), settings), int32_t(levels)};
+  auto depth = frame.depth();
+  auto& pipelines = frame.pipelines();
+  frame.graph().addPass(
+      "xegtao_prefilter",
+      [&](graph::PassBuilder& b) {
+        b.read(depth, graph::Access::SampledRead);
+        b.write(mips);
+      },
+      [&pipelines, push, depth, mips, levels, size](graph::PassContext& ctx) {
+        auto level = [&](uint32_t k) { return graph::Subresources::mip(std::min(k, levels - 1)); };
+        dispatchCompute(ctx, pipelines.get("xegtao/prefilter_depths"),
+                        {depth, {mips, level(0)}, {mips, level(1)}, {mips, level(2)}, {mips, level(3)}, {mips, level(4)}},
+                        &push, (size.x + 1) / 2, (size.y + 1) / 2);
+      });
+  return mips;
+}
+
+XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips) {
+  glm::uvec2 size = frame.size();
+  auto& g = frame.graph();
+  XeGtaoWorking out;
+  out.aoTerm = g.createImage("ao_term", {size.x, size.y, aoTermFormat(settings.bent)});
+  out.edges = g.createImage("edges", {size.x, size.y, VK_FORMAT_R8_UNORM});
+  auto params = projectionParams(frame.camera().projection, frame.camera().width, frame.camera().height);
+  MainPassPush push{xegtaoConstants(frame.camera(), settings), params.projection22, params.projection32,
+                    params.reversedDepth ? 1u : 0u};
+  bool countTaps = frame.wantsDebugView("mip_taps");
+  graph::ResourceId taps = countTaps ? addMipTapsBuffer(frame) : graph::kNoResource;
+  std::vector<SpecializationValue> specialization{
+      spec(shader::kXeGtaoSpecSlices, settings.slices), spec(shader::kXeGtaoSpecSteps, settings.steps),
+      spec(shader::kXeGtaoSpecBent, settings.bent), spec(shader::kXeGtaoSpecThin, settings.thinOccluderCompensation > 0.0f),
+      spec(shader::kXeGtaoSpecDepth32, settings.depth32),
+      {uint32_t(shader::kXeGtaoSpecSampleDistributionPower), std::bit_cast<uint32_t>(settings.sampleDistributionPower)}};
+  auto depth = frame.depth();
+  auto normals = frame.viewNormals();
+  auto& pipelines = frame.pipelines();
+  g.addPass(
+      "xegtao_main",
+      [&](graph::PassBuilder& b) {
+        b.read(depthMips, graph::Access::SampledRead);
+        b.read(normals, graph::Access::StorageRead);
+        b.read(depth, graph::Access::SampledRead);
+        b.write(out.aoTerm);
+        b.write(out.edges);
+        if (countTaps) {  // atomic adds: a read and a write
+          b.read(taps, graph::Access::StorageRead);
+          b.write(taps, graph::Access::StorageWrite);
+        }
+      },
+      [&pipelines, specialization, push, depthMips, normals, depth, out, taps, countTaps, size](graph::PassContext& ctx) {
+        if (countTaps) {
+          dispatchCompute(ctx, pipelines.get("xegtao/main_pass_taps", specialization),
+                          {depthMips, normals, depth, out.aoTerm, out.edges, taps}, &push, size.x, size.y);
+        } else {
+          dispatchCompute(ctx, pipelines.get("xegtao/main_pass", specialization),
+                          {depthMips, normals, depth, out.aoTerm, out.edges}, &push, size.x, size.y);
+        }
+      });
+  if (countTaps) frame.debugView("mip_taps", taps);
+  return out;
+}
+
+graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working) {
+  glm::uvec2 size = frame.size();
+  auto& g = frame.graph();
+  auto constants = xegtaoConstants(frame.camera(), settings);
+  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecBent, settings.bent)};
+  auto& pipelines = frame.pipelines();
+  graph::ResourceId source = working.aoTerm;
+  int passes = std::max(1, settings.denoisePasses);
+  for (int i = 0; i < passes; ++i) {
+    bool last = i == passes - 1;
+    // Passes before the last keep XeGTAO's working format (its ping-pong pair, as transients).
+    graph::ResourceId target =
+        last ? g.createImage("ao_denoised", {size.x, size.y, blocks::seed000AoFormat(settings.bent)})
+             : g.createImage("ao_term_" + std::to_string(i + 1), {size.x, size.y, aoTermFormat(settings.bent)});
+    std::string shader = last ? "xegtao/denoise_last" : "xegtao/denoise";
+    auto edges = working.edges;
+    g.addPass(
+        last ? "xegtao_denoise" : "xegtao_denoise_" + std::to_string(i + 1),
+        [&](graph::PassBuilder& b) {
+          b.read(source, graph::Access::SampledRead);
+          b.read(edges, graph::Access::SampledRead);
+          b.write(target);
+        },
+        [&pipelines, shader, specialization, constants, source, edges, target, size](graph::PassContext& ctx) {
+          dispatchCompute(ctx, pipelines.get(shader, specialization), {source, edges, target}, &constants, (size.x + 1) / 2,
+                          size.y);
+        });
+    source = target;
+  }
+  return source;
+}
+
+graph::ResourceId addXeGtaoScreenRadius(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips) {
+  glm::uvec2 size = frame.size();
+  auto radius = frame.graph().createImage("screen_radius", {size.x, size.y, VK_FORMAT_R32_SFLOAT});
+  auto constants = xegtaoConstants(frame.camera(), settings);
+  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecDepth32, settings.depth32)};
+  auto& pipelines = frame.pipelines();
+  frame.graph().addPass(
+      "xegtao_screen_radius",
+      [&](graph::PassBuilder& b) {
+        b.read(depthMips, graph::Access::SampledRead, graph::Subresources::mip(0));
+        b.write(radius);
+      },
+      [&pipelines, specialization, constants, depthMips, radius, size](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.get("xegtao/screen_radius", specialization),
+                        {{depthMips, graph::Subresources::mip(0)}, radius}, &constants, size.x, size.y);
+      });
+  return radius;
+}
+
+}  // namespace aor

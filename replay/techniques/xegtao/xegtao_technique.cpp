@@ -1,0 +1,94 @@
+// Seed 002: Intel's XeGTAO (depth prefilter -> main pass -> edge-aware denoise), as a technique
+// module: its settings under XeGTAO's names and defaults, its quality presets, its passes (in
+// xegtao_passes.cpp), the shared temporal block as an option. Point by point: README.md here.
+#include <fmt/format.h>
+
+#include "blocks/blocks.h"
+#include "techniques/registry.h"
+#include "techniques/xegtao/xegtao_settings.h"
+
+namespace aor {
+namespace {
+
+void addXeGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
+  XeGtaoSettings x = xegtaoSettings(settings);
+  auto mips = addXeGtaoPrefilter(frame, x);
+  auto working = addXeGtaoMainPass(frame, x, mips);
+  auto denoised = addXeGtaoDenoise(frame, x, working);
+
+  frame.debugView("linear_depth", mips, {0, 1, 0, 1});
+  uint32_t levels = frame.graph().resources().at(mips).desc.mipLevels;
+  for (uint32_t k = 1; k < levels; ++k) frame.debugView(fmt::format("depth_mip{}", k), mips, {k, 1, 0, 1});
+  frame.debugView("view_normals", frame.viewNormals());
+  frame.debugView("screen_radius", addXeGtaoScreenRadius(frame, x, mips));
+  frame.debugView("edges", working.edges);
+  frame.debugView("ao_raw", working.aoTerm);
+  frame.debugView("ao_denoised", denoised);
+
+  blocks::DenoiseInput in{denoised, x.bent, 1};
+  frame.setOutput(blocks::addSeed000Temporal(frame, in),
+                  x.bent ? OutputLayout::bentThenVisibility() : OutputLayout::visibilityOnly());
+}
+
+Technique makeXeGtao() {
+  Technique t;
+  t.name = "xegtao";
+  t.seed = "002 XeGTAO";
+  t.summary = "Intel's XeGTAO: prefiltered depth MIP chain, horizon search with Hilbert/R2 noise, edge-aware denoiser";
+  t.parameters = {
+      radiusParameter(0.5),
+      intParameter("slices", 3, 1, 32, "slice directions per pixel (XeGTAO's sliceCount)"),
+      intParameter("steps", 3, 1, 32, "samples per side of a slice (stepsPerSlice)"),
+      floatParameter("radius_multiplier", shader::kXeGtaoDefaultRadiusMultiplier, 0.3, 3.0,
+                     "RadiusMultiplier: the radius searched is radius x this", true),
+      floatParameter("falloff_range", shader::kXeGtaoDefaultFalloffRange, 0.0, 1.0,
+                     "FalloffRange: fraction of the radius over which samples fade out", true),
+      floatParameter("sample_distribution_power", shader::kXeGtaoDefaultSampleDistributionPower, 1.0, 3.0,
+                     "SampleDistributionPower: step positions t^power, >1 crowds them towards the centre", true),
+      floatParameter("thin_occluder_compensation", shader::kXeGtaoDefaultThinOccluderCompensation, 0.0, 0.7,
+                     "ThinOccluderCompensation: samples behind the centre fade sooner, 0 = off", true),
+      floatParameter("final_value_power", shader::kXeGtaoDefaultFinalValuePower, 0.5, 5.0,
+                     "FinalValuePower: exponent on the averaged visibility", true),
+      floatParameter("depth_mip_sampling_offset", shader::kXeGtaoDefaultDepthMipSamplingOffset, 0.0, 30.0,
+                     "DepthMIPSamplingOffset: MIP = log2(offset in pixels) - this", true),
+      intParameter("denoise_passes", 1, 1, 3, "DenoisePasses: edge-aware 3x3 passes (1 sharp, 2 medium, 3 soft)"),
+      boolParameter("depth32", false, "R32F depth MIP chain instead of R16F (XE_GTAO_FP32_DEPTHS)"),
+      boolParameter("bent", false, "bent normals computed and written (XE_GTAO_COMPUTE_BENT_NORMALS)"),
+      blocks::temporalParameter(0.0),
+  };
+  t.presets = {{"low", {{"slices", 1}, {"steps", 2}}},
+               {"medium", {{"slices", 2}, {"steps", 2}}},
+               {"high", {{"slices", 3}, {"steps", 3}}},
+               {"ultra", {{"slices", 9}, {"steps", 3}}}};
+  t.defaultPreset = "high";
+  t.debugViews = {
+      {"linear_depth", "the prefilter's MIP 0: XeGTAO's view z (R16F, R32F with depth32=1; sky at its far value)"},
+      {"depth_mip1", "depth MIP 1 (weighted-average filter)"},
+      {"depth_mip2", "depth MIP 2"},
+      {"depth_mip3", "depth MIP 3"},
+      {"depth_mip4", "depth MIP 4"},
+      {"view_normals", "the normals the main pass reads (the shared front's, this tool's view space)"},
+      {"screen_radius", "the main pass's screen-space radius, pixels (R32F)"},
+      {"edges", "packed edges for the denoiser (R8_UNORM: 2 bits a side, left in the top bits)"},
+      {"ao_raw", "the main pass's working term as stored: round(255 x visibility / 1.5) (bent=1: RGBA8 packed in R32)"},
+      {"ao_denoised", "after the last denoise pass, before any temporal pass: visibility (bent=1: RGBA, bent.xyz + visibility)"},
+      {"mip_taps", "report.json frames[i].debug.mip_taps: the main pass's depth taps per MIP level 0-4"},
+  };
+  t.addPasses = addXeGtaoPipeline;
+  t.history = blocks::seed000TemporalHistory;
+  t.withoutHistory = [](const Settings& s) -> std::optional<Settings> {
+    Settings without = s;
+    without.set(blocks::kTemporalKey, 0);
+    return without;
+  };
+  return t;
+}
+
+}  // namespace
+
+const Technique& xegtaoTechnique() {
+  static const Technique t = makeXeGtao();
+  return t;
+}
+
+}  // namespace aor

@@ -1,0 +1,194 @@
+// XeGTAO pass 2 (XeGTAO_MainPass with vaGTAO.hlsl's noise and normal loading), one thread per
+// pixel in 8x8 workgroups. Built twice: main_pass.comp, and main_pass_taps.comp (XEGTAO_COUNT_TAPS)
+// which also counts the depth taps by the MIP level the sampler reads (--debug mip_taps).
+#include "xegtao.h"
+#include "../blocks/linearize_depth.h"
+
+layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
+layout(constant_id = kXeGtaoSpecSlices) const int kSlices = 3;
+layout(constant_id = kXeGtaoSpecSteps) const int kSteps = 3;
+layout(constant_id = kXeGtaoSpecBent) const bool kBent = false;
+layout(constant_id = kXeGtaoSpecThin) const bool kThin = false;
+layout(constant_id = kXeGtaoSpecDepth32) const bool kDepth32 = false;
+layout(constant_id = kXeGtaoSpecSampleDistributionPower) const float kSampleDistributionPower = 2.0;
+
+layout(push_constant, scalar) uniform Push {
+  XeGtaoConstants pc;
+  float projection22;  // the shared front's sky test on the capture's depth (linearViewDistance)
+  float projection32;
+  uint reversedDepth;
+};
+layout(set = 0, binding = 0) uniform sampler2D depthMips;   // pass 1's chain, nearest (texels and levels), clamped
+layout(set = 0, binding = 1, rgba16f) uniform readonly image2D viewNormals;  // the front's, this tool's view space
+layout(set = 0, binding = 2) uniform sampler2D screenDepth;                  // the capture's depth: the sky test only
+layout(set = 0, binding = 3) uniform writeonly uimage2D workingAoTerm;       // R8_UINT (R32_UINT with bent normals)
+layout(set = 0, binding = 4) uniform writeonly image2D workingEdges;         // R8_UNORM
+#ifdef XEGTAO_COUNT_TAPS
+layout(set = 0, binding = 5, std430) buffer MipTaps { uint mipTaps[kXeGtaoDepthMipLevels]; };
+shared uint groupTaps[kXeGtaoDepthMipLevels];
+#endif
+
+#include "xegtao_common.glsl"
+
+#ifdef XEGTAO_COUNT_TAPS
+bool countingThread = false;  // a thread of a pixel in the frame (not one past its edge)
+// The level a nearest-mipmap sampler reads for `lod` (rounded to nearest, within the chain).
+void countTap(float lod) {
+  if (countingThread) atomicAdd(groupTaps[clamp(int(floor(lod + 0.5)), 0, kXeGtaoDepthMipLevels - 1)], 1u);
+}
+#else
+void countTap(float lod) {}
+#endif
+
+// XeGTAO_OutputWorkingTerm: visibility scaled into UNORM range by 1 / 1.5, 8 bits (with the bent
+// normal as RGBA8).
+void storeWorkingTerm(ivec2 pixel, float visibility, vec3 bentNormal) {
+  visibility = clamp(visibility / kXeGtaoOcclusionTermScale, 0.0, 1.0);
+  uint packedValue = kBent ? xegtaoPackUnorm8x4(vec4(bentNormal * 0.5 + 0.5, visibility)) : uint(visibility * 255.0 + 0.5);
+  imageStore(workingAoTerm, pixel, uvec4(packedValue));
+}
+
+// XeGTAO_RotFromToMatrix(from, to) applied to v (Moller & Hughes; identity when nearly parallel).
+vec3 rotateFromTo(vec3 from, vec3 to, vec3 v) {
+  float e = dot(from, to);
+  if (abs(e) > 1.0 - 0.0003) return v;
+  vec3 c = cross(from, to);
+  float h = 1.0 / (1.0 + e);
+  float hvx = h * c.x, hvz = h * c.z;
+  float hvxy = hvx * c.y, hvxz = hvx * c.z, hvyz = hvz * c.y;
+  vec3 row0 = vec3(e + hvx * c.x, hvxy - c.z, hvxz + c.y);
+  vec3 row1 = vec3(hvxy + c.z, e + h * c.y * c.y, hvyz - c.x);
+  vec3 row2 = vec3(hvxz - c.y, hvyz + c.x, e + hvz * c.z);
+  return vec3(dot(row0, v), dot(row1, v), dot(row2, v));
+}
+
+// The falloff terms of XeGTAO_MainPass: weight = saturate(distance * mul + add).
+struct Falloff {
+  float mul, add;
+};
+
+Falloff falloffOf(float effectRadius) {
+  float falloffRange = pc.effectFalloffRange * effectRadius;
+  float falloffFrom = effectRadius * (1.0 - pc.effectFalloffRange);
+  return Falloff(-1.0 / falloffRange, falloffFrom / falloffRange + 1.0);
+}
+
+// One sample's horizon cosine, pulled towards the slice's low horizon by its falloff weight.
+float sampleHorizonCos(vec2 samplePos, float mipLevel, vec3 centre, vec3 viewVec, Falloff falloff, float lowHorizonCos) {
+  float sampleZ = textureLod(depthMips, samplePos, mipLevel).x;
+  countTap(mipLevel);
+  vec3 delta = xegtaoViewPosition(samplePos, sampleZ) - centre;
+  float dist = length(delta);
+  vec3 horizonVec = delta / dist;
+  float falloffBase = kThin ? length(vec3(delta.xy, delta.z * (1.0 + pc.thinOccluderCompensation))) : dist;
+  float weight = clamp(falloffBase * falloff.mul + falloff.add, 0.0, 1.0);
+  return mix(lowHorizonCos, dot(horizonVec, viewVec), weight);
+}
+
+// Algorithm 1 of the GTAO paper as XeGTAO_MainPass runs it: per slice the projected normal's angle,
+// the horizon search on both sides, the analytic integral (and the bent normal of Algorithm 2).
+float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, float viewZ, vec2 noise, out vec3 bentNormal) {
+  float effectRadius = pc.effectRadius * pc.radiusMultiplier;
+  Falloff falloff = falloffOf(effectRadius);
+  float sliceCount = float(kSlices), stepsPerSlice = float(kSteps);
+  float visibility = 0.0;
+  bentNormal = kBent ? vec3(0.0) : normal;
+  vec2 pixelDirRBViewspaceSizeAtCenterZ = vec2(viewZ) * pc.ndcToViewMulXPixelSize;
+  float screenspaceRadius = effectRadius / pixelDirRBViewspaceSizeAtCenterZ.x;
+  visibility += clamp((10.0 - screenspaceRadius) / 100.0, 0.0, 1.0) * 0.5;  // fade out for small screen radii
+  float minS = kXeGtaoPixelTooClose / screenspaceRadius;  // never sample the centre pixel
+
+  for (float slice = 0.0; slice < sliceCount; slice += 1.0) {
+    float phi = ((slice + noise.x) / sliceCount) * kXeGtaoPi;
+    float cosPhi = cos(phi), sinPhi = sin(phi);
+    vec2 omega = vec2(cosPhi, -sinPhi) * screenspaceRadius;  // pixels, y down
+    vec3 directionVec = vec3(cosPhi, sinPhi, 0.0);
+    vec3 orthoDirectionVec = directionVec - dot(directionVec, viewVec) * viewVec;
+    vec3 axisVec = normalize(cross(orthoDirectionVec, viewVec));
+    vec3 projectedNormalVec = normal - axisVec * dot(normal, axisVec);
+    float signNorm = sign(dot(orthoDirectionVec, projectedNormalVec));
+    float projectedNormalVecLength = length(projectedNormalVec);
+    float cosNorm = clamp(dot(projectedNormalVec, viewVec) / projectedNormalVecLength, 0.0, 1.0);
+    float n = signNorm * xegtaoFastAcos(cosNorm);
+    float lowHorizonCos0 = cos(n + kXeGtaoHalfPi);
+    float lowHorizonCos1 = cos(n - kXeGtaoHalfPi);
+    float horizonCos0 = lowHorizonCos0, horizonCos1 = lowHorizonCos1;
+
+    [[unroll]] for (float stepIndex = 0.0; stepIndex < stepsPerSlice; stepIndex += 1.0) {
+      float stepBaseNoise = float(slice + stepIndex * stepsPerSlice) * 0.6180339887498948482;  // R1
+      float stepNoise = fract(noise.y + stepBaseNoise);
+      float s = (stepIndex + stepNoise) / stepsPerSlice;
+      s = pow(s, kSampleDistributionPower);
+      s += minS;
+      vec2 sampleOffset = s * omega;
+      float mipLevel = clamp(log2(length(sampleOffset)) - pc.depthMipSamplingOffset, 0.0, float(kXeGtaoDepthMipLevels));
+      sampleOffset = roundEven(sampleOffset) * pc.viewportPixelSize;  // snapped to pixel centres (HLSL round: halves to even)
+      float shc0 = sampleHorizonCos(screenPos + sampleOffset, mipLevel, centre, viewVec, falloff, lowHorizonCos0);
+      float shc1 = sampleHorizonCos(screenPos - sampleOffset, mipLevel, centre, viewVec, falloff, lowHorizonCos1);
+      horizonCos0 = max(horizonCos0, shc0);
+      horizonCos1 = max(horizonCos1, shc1);
+    }
+
+    projectedNormalVecLength = mix(projectedNormalVecLength, 1.0, 0.05);  // XeGTAO's slope fudge
+    float h0 = -xegtaoFastAcos(horizonCos1);
+    float h1 = xegtaoFastAcos(horizonCos0);
+    float iarc0 = (cosNorm + 2.0 * h0 * sin(n) - cos(2.0 * h0 - n)) / 4.0;
+    float iarc1 = (cosNorm + 2.0 * h1 * sin(n) - cos(2.0 * h1 - n)) / 4.0;
+    visibility += projectedNormalVecLength * (iarc0 + iarc1);
+
+    if (kBent) {
+      float t0 = (6.0 * sin(h0 - n) - sin(3.0 * h0 - n) + 6.0 * sin(h1 - n) - sin(3.0 * h1 - n) + 16.0 * sin(n) -
+                  3.0 * (sin(h0 + n) + sin(h1 + n))) / 12.0;
+      float t1 = (-cos(3.0 * h0 - n) - cos(3.0 * h1 - n) + 8.0 * cos(n) - 3.0 * (cos(h0 + n) + cos(h1 + n))) / 12.0;
+      vec3 localBentNormal = vec3(directionVec.x * t0, directionVec.y * t0, -t1);
+      bentNormal += rotateFromTo(vec3(0.0, 0.0, -1.0), viewVec, localBentNormal) * projectedNormalVecLength;
+    }
+  }
+  visibility /= sliceCount;
+  visibility = pow(visibility, pc.finalValuePower);
+  visibility = max(kXeGtaoVisibilityFloor, visibility);
+  if (kBent) bentNormal = normalize(bentNormal);
+  return visibility;
+}
+
+void main() {
+#ifdef XEGTAO_COUNT_TAPS
+  if (gl_LocalInvocationIndex < uint(kXeGtaoDepthMipLevels)) groupTaps[gl_LocalInvocationIndex] = 0u;
+  barrier();
+#endif
+  // Straight-line code as XeGTAO's (no branch around the work): a thread past the edge computes
+  // its clamped pixel and stores nothing, a sky pixel computes and stores 1.
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  bool inside = pixel.x < pc.viewportSize.x && pixel.y < pc.viewportSize.y;
+  pixel = min(pixel, pc.viewportSize - 1);
+#ifdef XEGTAO_COUNT_TAPS
+  countingThread = inside;
+#endif
+  vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
+  vec2 cornerPos = vec2(pixel) * pc.viewportPixelSize;
+  vec4 valuesUL = textureGather(depthMips, cornerPos);                    // x L, y centre, z T
+  vec4 valuesBR = textureGatherOffset(depthMips, cornerPos, ivec2(1, 1));  // x B, z R
+  float viewZ = valuesUL.y;
+  vec4 edges = xegtaoEdges(viewZ, valuesUL.x, valuesBR.z, valuesUL.z, valuesBR.x);
+  if (inside) imageStore(workingEdges, pixel, vec4(xegtaoPackEdges(edges)));
+
+  vec3 normal = normalize(xegtaoFromToolView(imageLoad(viewNormals, pixel).xyz));  // LoadNormal normalises
+  viewZ *= kDepth32 ? kXeGtaoDepth32PullIn : kXeGtaoDepth16PullIn;  // against depth imprecision
+  vec3 centre = xegtaoViewPosition(screenPos, viewZ);
+  vec3 viewVec = normalize(-centre);
+  vec3 bentNormal;
+  float visibility = horizonSearch(screenPos, centre, viewVec, normal, viewZ, xegtaoNoise(uvec2(pixel), uint(pc.noiseIndex)), bentNormal);
+  // Sky and invalid depth (the shared front's rule) occlude nothing: XeGTAO leaves them to the
+  // engine, which never shades them.
+  bool sky = linearViewDistance(texelFetch(screenDepth, pixel, 0).r, projection22, projection32, reversedDepth != 0u) <= 0.0;
+  if (sky) {
+    visibility = 1.0;
+    bentNormal = viewVec;
+  }
+  if (inside) storeWorkingTerm(pixel, visibility, bentNormal);
+#ifdef XEGTAO_COUNT_TAPS
+  barrier();
+  if (gl_LocalInvocationIndex < uint(kXeGtaoDepthMipLevels))
+    atomicAdd(mipTaps[gl_LocalInvocationIndex], groupTaps[gl_LocalInvocationIndex]);
+#endif
+}

@@ -1,0 +1,89 @@
+#version 450
+// XeGTAO pass 1 (XeGTAO_PrefilterDepths16x16): the capture's depth to view z, and the 5-level MIP
+// chain of it with XeGTAO's weighted-average filter, in one dispatch: each 8x8 workgroup covers
+// 16x16 pixels, each thread 2x2 of them; levels 2-4 reduce through shared memory.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "xegtao.h"
+
+layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
+layout(push_constant, scalar) uniform Push {
+  XeGtaoConstants pc;
+  int mipLevels;  // levels the chain has: fewer than 5 for frames under 16 pixels a side
+};
+layout(set = 0, binding = 0) uniform sampler2D screenDepth;  // the capture's depth, nearest, clamped
+// The chain's levels, R16F (or R32F with depth32=1): written without a format.
+layout(set = 0, binding = 1) uniform writeonly image2D depthMip0;
+layout(set = 0, binding = 2) uniform writeonly image2D depthMip1;
+layout(set = 0, binding = 3) uniform writeonly image2D depthMip2;
+layout(set = 0, binding = 4) uniform writeonly image2D depthMip3;
+layout(set = 0, binding = 5) uniform writeonly image2D depthMip4;
+
+#include "xegtao_common.glsl"
+
+shared float scratchDepths[8][8];
+
+// XeGTAO_DepthMIPFilter: the average of four depths, each weighted down the farther it lies
+// behind the nearest, over the falloff of 0.75 x the effect radius.
+float mipFilter(float d0, float d1, float d2, float d3) {
+  float maxDepth = max(max(d0, d1), max(d2, d3));
+  float effectRadius = 0.75 * pc.effectRadius * pc.radiusMultiplier;
+  float falloffRange = pc.effectFalloffRange * effectRadius;
+  float falloffFrom = effectRadius * (1.0 - pc.effectFalloffRange);
+  float falloffMul = -1.0 / falloffRange;
+  float falloffAdd = falloffFrom / falloffRange + 1.0;
+  float w0 = clamp((maxDepth - d0) * falloffMul + falloffAdd, 0.0, 1.0);
+  float w1 = clamp((maxDepth - d1) * falloffMul + falloffAdd, 0.0, 1.0);
+  float w2 = clamp((maxDepth - d2) * falloffMul + falloffAdd, 0.0, 1.0);
+  float w3 = clamp((maxDepth - d3) * falloffMul + falloffAdd, 0.0, 1.0);
+  float weightSum = w0 + w1 + w2 + w3;
+  return (w0 * d0 + w1 * d1 + w2 * d2 + w3 * d3) / weightSum;
+}
+
+// XeGTAO writes every texel of the 16x16 tile; a storage write outside the image is undefined in
+// Vulkan, so each is bounded by its level's size (and a level the chain lacks is bound to its last
+// and never written).
+bool inLevel(int mip, ivec2 texel) {
+  ivec2 size = max(pc.viewportSize >> mip, ivec2(1));
+  return mip < mipLevels && texel.x < size.x && texel.y < size.y;
+}
+
+// One reduction step of levels 2-4 (XeGTAO's three `if (groupThreadID % k == 0)` blocks): threads
+// on a `stride` grid reduce the 2x2 of scratch values `stride / 2` apart.
+bool reduceStep(uvec2 thread, uint stride, out float value) {
+  value = 0.0;
+  if (thread.x % stride != 0u || thread.y % stride != 0u) return false;
+  uint half_ = stride / 2u;
+  value = mipFilter(scratchDepths[thread.x][thread.y], scratchDepths[thread.x + half_][thread.y],
+                    scratchDepths[thread.x][thread.y + half_], scratchDepths[thread.x + half_][thread.y + half_]);
+  scratchDepths[thread.x][thread.y] = value;
+  return true;
+}
+
+void main() {
+  uvec2 base = gl_GlobalInvocationID.xy;
+  uvec2 thread = gl_LocalInvocationID.xy;
+  ivec2 pixel = ivec2(base * 2u);
+  // The 2x2 quad whose top-left is `pixel`: gather at its centre (w, z, x, y = TL, TR, BL, BR).
+  vec4 quad = textureGatherOffset(screenDepth, vec2(pixel) * pc.viewportPixelSize, ivec2(1, 1));
+  float d0 = xegtaoViewDepth(quad.w);
+  float d1 = xegtaoViewDepth(quad.z);
+  float d2 = xegtaoViewDepth(quad.x);
+  float d3 = xegtaoViewDepth(quad.y);
+  if (inLevel(0, pixel)) imageStore(depthMip0, pixel, vec4(d0));
+  if (inLevel(0, pixel + ivec2(1, 0))) imageStore(depthMip0, pixel + ivec2(1, 0), vec4(d1));
+  if (inLevel(0, pixel + ivec2(0, 1))) imageStore(depthMip0, pixel + ivec2(0, 1), vec4(d2));
+  if (inLevel(0, pixel + ivec2(1, 1))) imageStore(depthMip0, pixel + ivec2(1, 1), vec4(d3));
+
+  float mip1 = mipFilter(d0, d1, d2, d3);
+  if (inLevel(1, ivec2(base))) imageStore(depthMip1, ivec2(base), vec4(mip1));
+  scratchDepths[thread.x][thread.y] = mip1;
+  barrier();
+
+  float value;
+  if (reduceStep(thread, 2u, value) && inLevel(2, ivec2(base / 2u))) imageStore(depthMip2, ivec2(base / 2u), vec4(value));
+  barrier();
+  if (reduceStep(thread, 4u, value) && inLevel(3, ivec2(base / 4u))) imageStore(depthMip3, ivec2(base / 4u), vec4(value));
+  barrier();
+  if (reduceStep(thread, 8u, value) && inLevel(4, ivec2(base / 8u))) imageStore(depthMip4, ivec2(base / 8u), vec4(value));
+}
