@@ -13,19 +13,6 @@ namespace {
 constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf"};
 constexpr double kMarginLeft = 78, kMarginRight = 24, kMarginTop = 62, kMarginBottom = 56;
 
-std::string escapeXml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 bool usable(double v, bool logScale) { return std::isfinite(v) && (!logScale || v > 0); }
 
@@ -337,6 +324,22 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   drawKey(svg, options.key, x.pixelLo, x.pixelHi, y.pixelLo + 58);
   svg += "</svg>\n";
   return svg;
+}
+
+std::string escapeXml(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace aor

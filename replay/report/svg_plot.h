@@ -2,6 +2,7 @@
 // Small, dependency-free SVG charts for reports (error vs time, per-frame curves): readable in any
 // browser, no plotting tool needed. Deterministic output for the same data.
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace aor {
@@ -28,5 +29,8 @@ struct PlotOptions {
 };
 
 std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& options);
+
+// Text for XML and HTML (SVG, report pages, JUnit): & < > " ' as entities.
+std::string escapeXml(std::string_view text);
 
 }  // namespace aor

@@ -38,13 +38,6 @@ GridAxis parseAxis(const std::string& text) {
 }
 
 
-std::vector<std::string> passNames(const std::vector<SweepRow>& rows) {
-  std::vector<std::string> names;
-  for (const auto& row : rows)
-    for (const auto& [name, ms] : row.passMs)
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-  return names;
-}
 
 double passMs(const SweepRow& row, const std::string& name) {
   for (const auto& [n, ms] : row.passMs)
@@ -158,7 +151,7 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
 }
 
 std::string sweepCsv(const std::vector<SweepRow>& rows) {
-  auto passes = passNames(rows);
+  auto passes = sweepPassNames(rows);
   // Every key of every technique in the sweep, in the order they are first declared.
   std::vector<const Parameter*> keys;
   for (const auto& row : rows)
@@ -213,7 +206,7 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
 std::string sweepTable(const std::vector<SweepRow>& rows) {
   size_t nameWidth = 13;
   for (const auto& row : rows) nameWidth = std::max(nameWidth, row.config.name.size());
-  auto passes = passNames(rows);
+  auto passes = sweepPassNames(rows);
   std::string table = fmt::format("{:<{}}", "configuration", nameWidth);
   for (const auto& p : passes) table += fmt::format(" {:>{}}", p, std::max<size_t>(p.size(), 8));
   table += fmt::format(" {:>10} {:>9} {:>7} {:>6}\n", "total ms", "RMSE", "SSIM", "pareto");
@@ -223,6 +216,14 @@ std::string sweepTable(const std::vector<SweepRow>& rows) {
     table += fmt::format(" {:>10.3f} {:>9.5f} {:>7.4f} {:>6}\n", row.totalMs, row.rmse, row.ssim, row.pareto ? "*" : "");
   }
   return table;
+}
+
+std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows) {
+  std::vector<std::string> names;
+  for (const auto& row : rows)
+    for (const auto& [name, ms] : row.passMs)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  return names;
 }
 
 }  // namespace aor

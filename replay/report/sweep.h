@@ -61,4 +61,7 @@ std::string sweepCsv(const std::vector<SweepRow>& rows);
 std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows);
 std::string sweepTable(const std::vector<SweepRow>& rows);
 
+// Every pass name of the rows, in first-seen order (the table's and the page's columns).
+std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows);
+
 }  // namespace aor

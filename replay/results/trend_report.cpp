@@ -18,27 +18,6 @@ std::string where(const SeriesHistory& h, const ChangePoint& c) {
   return fmt::format("suspect range {}..{}, need more runs", first.sha, h.commits[c.lastCommit].sha);
 }
 
-const PassShift* strongest(const ChangePoint& c) {
-  const PassShift* best = nullptr;
-  for (const auto& p : c.passes)
-    if (p.changed && (!best || p.pHolm < best->pHolm)) best = &p;
-  return best;
-}
-
-std::string xmlEscaped(const std::string& text) {
-  std::string out;
-  for (char ch : text) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string trendTable(const std::vector<TrendResult>& results, const TrendOptions& o) {
@@ -108,8 +87,8 @@ std::string trendJUnit(const std::vector<TrendResult>& results) {
     const ChangePoint* newest = r.trend.changes.empty() ? nullptr : &r.trend.changes.back();
     for (const auto& pass : r.trend.judged) {
       ++tests;
-      std::string classname = xmlEscaped(fmt::format("{} {}", shortSha(r.history.fingerprint), r.history.key.label()));
-      cases += fmt::format("    <testcase classname=\"{}\" name=\"{}\"", classname, xmlEscaped(pass));
+      std::string classname = escapeXml(fmt::format("{} {}", shortSha(r.history.fingerprint), r.history.key.label()));
+      cases += fmt::format("    <testcase classname=\"{}\" name=\"{}\"", classname, escapeXml(pass));
       const PassShift* shift = nullptr;
       if (newest && newest->slower)
         for (const auto& p : newest->passes)
@@ -121,7 +100,7 @@ std::string trendJUnit(const std::vector<TrendResult>& results) {
       ++failures;
       std::string message = fmt::format("slower x{:.3f} [x{:.3f}, x{:.3f}], {}", shift->ratio, shift->lower, shift->upper,
                                         where(r.history, *newest));
-      cases += fmt::format(">\n      <failure message=\"{}\" type=\"slowdown\"/>\n    </testcase>\n", xmlEscaped(message));
+      cases += fmt::format(">\n      <failure message=\"{}\" type=\"slowdown\"/>\n    </testcase>\n", escapeXml(message));
     }
   }
   return fmt::format(

@@ -9,13 +9,6 @@
 namespace aor::html {
 namespace {
 
-std::vector<std::string> passNames(const std::vector<SweepRow>& rows) {
-  std::vector<std::string> names;
-  for (const auto& row : rows)
-    for (const auto& [name, ms] : row.passMs)
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-  return names;
-}
 
 // Every key of every technique in the sweep, in the order first declared (as sweep.csv).
 std::vector<std::string> keyNames(const std::vector<SweepRow>& rows) {
@@ -31,7 +24,7 @@ std::string numberCell(double value, const char* format) {
 }
 
 std::string configurationsTable(const std::vector<SweepRow>& rows) {
-  auto passes = passNames(rows);
+  auto passes = sweepPassNames(rows);
   auto keys = keyNames(rows);
   Table table{"configurations", {"#", "configuration", "technique"}, {}, true};
   for (const auto& k : keys) table.header.push_back(k);
