@@ -3,6 +3,7 @@
 // distance, view-space normals), seed 000's spatial and temporal denoisers with their keys, and the
 // host's copies (upload, read-back, debug read-backs). Technique modules call these; the host
 // declares the front and the read-backs around a technique's own passes (techniques/frame_graph.cpp).
+#include <optional>
 #include <vector>
 
 #include "graph/render_graph.h"
@@ -31,6 +32,9 @@ inline constexpr const char* kSpatialKey = "spatial";
 inline constexpr const char* kTemporalKey = "temporal";
 // The temporal block keeps history (AO and linear distance) when temporal > 0.
 HistoryNeeds seed000TemporalHistory(const Settings& settings);
+// The same settings with the temporal block off (temporal = 0): the replay the ghosting metrics
+// compare against on captures without references (Technique::withoutHistory).
+std::optional<Settings> seed000WithoutTemporal(const Settings& settings);
 
 // AO images the denoisers read and write: RGBA16F (bent.xyz, visibility) or R16F (visibility).
 VkFormat seed000AoFormat(bool bent);

@@ -75,6 +75,12 @@ HistoryNeeds seed000TemporalHistory(const Settings& settings) {
   return {keeps, keeps, keeps ? "" : "temporal=0"};
 }
 
+std::optional<Settings> seed000WithoutTemporal(const Settings& settings) {
+  Settings without = settings;
+  without.set(kTemporalKey, 0);
+  return without;
+}
+
 VkFormat seed000AoFormat(bool bent) { return bent ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R16_SFLOAT; }
 
 graph::ResourceId addSeed000Spatial(FrameBuilder& frame, const DenoiseInput& in) {

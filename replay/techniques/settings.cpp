@@ -111,13 +111,16 @@ std::optional<double> captureRadius(const Capture& capture) {
   return r;
 }
 
+bool assignsRadius(const std::vector<std::string>& assignments) {
+  return std::any_of(assignments.begin(), assignments.end(),
+                     [](const std::string& a) { return a.rfind(std::string(kRadiusKey) + "=", 0) == 0; });
+}
+
 Settings resolveSettings(const Technique& technique, const Capture& capture, std::string_view preset,
                          const std::vector<std::string>& assignments) {
   Settings s(technique);
   if (!preset.empty()) s.applyPreset(preset);
-  bool radiusGiven = std::any_of(assignments.begin(), assignments.end(),
-                                 [](const std::string& a) { return a.rfind(std::string(kRadiusKey) + "=", 0) == 0; });
-  if (auto r = captureRadius(capture); r && !radiusGiven && s.has(kRadiusKey)) s.set(kRadiusKey, *r);
+  if (auto r = captureRadius(capture); r && !assignsRadius(assignments) && s.has(kRadiusKey)) s.set(kRadiusKey, *r);
   for (const auto& a : assignments) s.assign(a);
   return s;
 }

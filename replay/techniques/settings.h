@@ -53,6 +53,8 @@ class Settings {
 // assignments in order. Throws InputError.
 Settings resolveSettings(const Technique& technique, const Capture& capture, std::string_view preset,
                          const std::vector<std::string>& assignments);
+// Whether one of the KEY=VALUE assignments sets the radius (it then wins over the capture's).
+bool assignsRadius(const std::vector<std::string>& assignments);
 // The capture's scene.ao_radius, checked; none when the capture has none.
 std::optional<double> captureRadius(const Capture& capture);
 

@@ -67,9 +67,7 @@ void checkAgainstTechnique(const std::string& file, const SettingsRecipe& recipe
 
 Settings SettingsRecipe::resolve(const Capture& capture) const {
   Settings s = resolveSettings(findTechnique(technique), capture, preset, assignments);
-  bool radiusGiven = std::any_of(assignments.begin(), assignments.end(),
-                                 [](const std::string& a) { return a.rfind(std::string(kRadiusKey) + "=", 0) == 0; });
-  if (radiusScale != 1.0 && !radiusGiven && s.has(kRadiusKey)) {
+  if (radiusScale != 1.0 && !assignsRadius(assignments) && s.has(kRadiusKey)) {
     const Parameter& range = *s.technique().parameter(kRadiusKey);
     s.set(kRadiusKey, std::clamp(s.value(kRadiusKey) * radiusScale, range.min, range.max));
   }

@@ -54,11 +54,7 @@ Technique makeGtao() {
                   {"ao_denoised", "after the spatial blur (GTAO's output with spatial=0)"}};
   t.addPasses = addGtaoPipeline;
   t.history = blocks::seed000TemporalHistory;
-  t.withoutHistory = [](const Settings& s) -> std::optional<Settings> {
-    Settings without = s;
-    without.set(blocks::kTemporalKey, 0);
-    return without;
-  };
+  t.withoutHistory = blocks::seed000WithoutTemporal;
   return t;
 }
 

@@ -86,11 +86,7 @@ Technique makeSao() {
                   {"ao", "after both blur legs (the output unless temporal > 0)"}};
   t.addPasses = addSaoPipeline;
   t.history = blocks::seed000TemporalHistory;
-  t.withoutHistory = [](const Settings& s) -> std::optional<Settings> {
-    Settings without = s;
-    without.set(blocks::kTemporalKey, 0);
-    return without;
-  };
+  t.withoutHistory = blocks::seed000WithoutTemporal;
   t.checkCapture = checkSaoCapture;
   return t;
 }

@@ -258,11 +258,7 @@ Technique makeTechnique(const UserTechnique& ut) {
   t.addPasses = [&ut](FrameBuilder& frame, const Settings& settings) { addUserPasses(ut, frame, settings); };
   t.history = [&ut](const Settings& settings) { return userHistory(ut.spec, settings); };
   if (spec.denoise == UserDenoise::Seed000 && !readsHistory(spec))
-    t.withoutHistory = [](const Settings& s) -> std::optional<Settings> {
-      Settings without = s;
-      without.set(blocks::kTemporalKey, 0);
-      return without;
-    };
+    t.withoutHistory = blocks::seed000WithoutTemporal;
   return t;
 }
 

@@ -76,11 +76,7 @@ Technique makeXeGtao() {
   };
   t.addPasses = addXeGtaoPipeline;
   t.history = blocks::seed000TemporalHistory;
-  t.withoutHistory = [](const Settings& s) -> std::optional<Settings> {
-    Settings without = s;
-    without.set(blocks::kTemporalKey, 0);
-    return without;
-  };
+  t.withoutHistory = blocks::seed000WithoutTemporal;
   return t;
 }
 
