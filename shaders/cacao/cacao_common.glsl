@@ -1,0 +1,26 @@
+// What CACAO's passes share on the GPU side (ffx_cacao.hlsl's helpers): the constant buffers,
+// depth unpacking, view-space positions. Binding 0 of every pass is the four layers' constants;
+// a pass over the layers picks its layer's by gl_WorkGroupID.z (FidelityFX binds one buffer per
+// layer instead).
+#include "cacao.h"
+
+layout(set = 0, binding = 0, scalar) uniform CacaoConstantBuffers { CacaoConstants cacaoLayers[kCacaoLayers]; };
+
+// FFX_CACAO_ScreenSpaceToViewSpaceDepth. Depth the R16F buffers cannot hold (the far plane of an
+// infinite projection, invalid input) is stored as kCacaoMaxViewDepth instead of inf or NaN.
+float cacaoViewDepth(CacaoConstants c, float screenDepth) {
+  float z = c.depthUnpackConsts.x / (c.depthUnpackConsts.y - screenDepth);
+  return (z > 0.0 && z < kCacaoMaxViewDepth) ? z : kCacaoMaxViewDepth;
+}
+
+// FFX_CACAO_NDCToViewSpace (uv in [0, 1], origin top left) and FFX_CACAO_DepthBufferUVToViewSpace.
+vec3 cacaoNdcToView(CacaoConstants c, vec2 pos, float viewDepth) {
+  return vec3((c.ndcToViewMul * pos + c.ndcToViewAdd) * viewDepth, viewDepth);
+}
+vec3 cacaoDepthBufferUvToView(CacaoConstants c, vec2 pos, float viewDepth) {
+  return vec3((c.depthBufferUvToViewMul * pos + c.depthBufferUvToViewAdd) * viewDepth, viewDepth);
+}
+
+// The layer a dispatch over the deinterleaved layers works on: z of the workgroup, except at
+// lowest where only layers 0 and 3 exist (z = 0, 1).
+int cacaoLayerOf(uint z, bool twoLayers) { return twoLayers ? int(z) * 3 : int(z); }

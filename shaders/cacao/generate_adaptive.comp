@@ -1,0 +1,7 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
+// CACAO SSAO generation Q3 (adaptive, highest): generate_body.glsl.
+#define CACAO_ADAPTIVE
+#include "generate_body.glsl"

@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+// CACAO postprocess importance map B: postprocess_importance_map_body.glsl.
+#define CACAO_PASS_B
+#include "postprocess_importance_map_body.glsl"

@@ -1,0 +1,68 @@
+#version 450
+// CACAO prepare depths with MIPs (medium and above): FFX_CACAO_Prepare{Native,Downsampled}DepthsAndMips.
+// Each 8x8 workgroup writes 8x8 texels of MIP 0 of every layer, then reduces them in shared memory
+// to MIPs 1-3 with FFX_CACAO_MipSmartAverage: at MIP 1 every thread averages one 2x2 block of one
+// layer (its layer from its own 2x2 phase), at MIP 2 a quarter of them, at MIP 3 one per layer.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "cacao_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = kCacaoSpecDownsampled) const bool kDownsampled = false;
+layout(set = 0, binding = 1) uniform sampler2D depthIn;
+layout(set = 0, binding = 2, r16f) uniform writeonly image2DArray depthMip0;
+layout(set = 0, binding = 3, r16f) uniform writeonly image2DArray depthMip1;
+layout(set = 0, binding = 4, r16f) uniform writeonly image2DArray depthMip2;
+layout(set = 0, binding = 5, r16f) uniform writeonly image2DArray depthMip3;
+
+shared float scratch[4][8][8];
+
+void storeIfInside(int level, ivec2 p, int layer, float value) {
+  ivec3 at = ivec3(p, layer);
+  if (level == 0 && all(lessThan(p, imageSize(depthMip0).xy))) imageStore(depthMip0, at, vec4(value));
+  if (level == 1 && all(lessThan(p, imageSize(depthMip1).xy))) imageStore(depthMip1, at, vec4(value));
+  if (level == 2 && all(lessThan(p, imageSize(depthMip2).xy))) imageStore(depthMip2, at, vec4(value));
+  if (level == 3 && all(lessThan(p, imageSize(depthMip3).xy))) imageStore(depthMip3, at, vec4(value));
+}
+
+void main() {
+  CacaoConstants c = cacaoLayers[0];
+  ivec2 tid = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 gtid = ivec2(gl_LocalInvocationID.xy);
+  int scale = kDownsampled ? 4 : 2;
+  int step = kDownsampled ? 2 : 1;
+  ivec2 last = textureSize(depthIn, 0) - 1;
+  for (int layer = 0; layer < kCacaoLayers; ++layer) {
+    ivec2 p = min(scale * tid + step * ivec2(layer % 2, layer / 2), last);
+    float z = cacaoViewDepth(c, texelFetch(depthIn, p, 0).x);
+    scratch[layer][gtid.x][gtid.y] = z;
+    storeIfInside(0, tid, layer, z);
+  }
+
+  int layer = 2 * (gtid.y % 2) + (gtid.x % 2);
+  ivec2 offset = ivec2(gtid.x % 2, gtid.y % 2);
+  ivec2 at = gtid - offset;
+  ivec2 outputCoord = tid / 2;
+  barrier();
+  float avg = cacaoMipSmartAverage(vec4(scratch[layer][at.x][at.y], scratch[layer][at.x][at.y + 1],
+                                        scratch[layer][at.x + 1][at.y], scratch[layer][at.x + 1][at.y + 1]),
+                                   c.effectRadius);
+  storeIfInside(1, outputCoord, layer, avg);
+  barrier();  // every thread has read its block before any overwrites one
+  scratch[layer][at.x][at.y] = avg;
+
+  for (int level = 2; level <= 3; ++level) {
+    int spacing = 1 << (level - 1);  // 2, then 4: the stride between the previous level's texels
+    bool alive = (gtid.x % (2 * spacing)) == offset.x && (gtid.y % (2 * spacing)) == offset.y;
+    outputCoord /= 2;
+    barrier();
+    if (alive) {
+      avg = cacaoMipSmartAverage(vec4(scratch[layer][at.x][at.y], scratch[layer][at.x][at.y + spacing],
+                                      scratch[layer][at.x + spacing][at.y], scratch[layer][at.x + spacing][at.y + spacing]),
+                                 c.effectRadius);
+      storeIfInside(level, outputCoord, layer, avg);
+    }
+    barrier();
+    if (alive) scratch[layer][at.x][at.y] = avg;
+  }
+}
