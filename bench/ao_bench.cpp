@@ -24,11 +24,19 @@
 // --extra-slices=N (0..23) adds N to the `slices` key of every configuration without renaming it: a
 // real slowdown for checking that `aoreplay compare` detects one.
 //
+// --floor: after the benchmarks, replays each configuration once more through the counting build of
+// its shaders (vk/op_counter.h; frames 0:2, counts of the second), measures the device's copy
+// bandwidth and texelFetch rate (device_rates.h: --rate-mib=MIB, default 256, --rate-size=WxH,
+// default 3840x2160), and prints per pass: counts, measured ms, floor ms, ratio (floor.h);
+// --floor-json=PATH writes the same as JSON. --no-rates: counts only (floor times 0), e.g. on lavapipe
+// with --benchmark_filter=none to skip the timing, as counts do not depend on the device.
+//
 // Warm-up is by time as well as by count: a GPU needs some hundred milliseconds of steady work to
 // leave its idle clocks, and a configuration measured in a 5 ms burst is measured at whatever clock
 // the previous one left (seen on the H100: one configuration 40% slower in one of two runs). A
 // probe execution times one frame; warm-ups are repeated until they add up to --warmup-ms.
 #include <algorithm>
+#include <fstream>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -40,6 +48,8 @@
 
 #include "bench_capture.h"
 #include "bench_scaling.h"
+#include "device_rates.h"
+#include "floor.h"
 #include "capture/input_error.h"
 #include "options/number.h"
 #include "options/size.h"
@@ -51,6 +61,7 @@
 #include "report/run_outputs.h"
 #include "report/stats.h"
 #include "vk/context.h"
+#include "vk/op_counter.h"
 
 namespace aor::bench {
 namespace {
@@ -68,6 +79,11 @@ struct Options {
   std::string device;
   std::string capture = AOR_SOURCE_DIR "/captures/boxes-orbit";
   std::string cache = "bench-captures";
+  bool floor = false;
+  bool rates = true;
+  std::string floorJson;
+  int rateMib = 256;
+  std::pair<int, int> rateSize{3840, 2160};
 };
 
 struct Config {
@@ -158,6 +174,25 @@ class Harness {
     return measured_.emplace(config.key(), std::move(m)).first->second;
   }
 
+  // Frame 1's counts per live pass (history valid), from one replay of frames 0:2 through the
+  // counting build.
+  std::vector<DispatchCounts> count(const Config& config) {
+    Capture capture = resampledCapture(options_.capture, config.width, config.height, 2, options_.cache);
+    ReplayOptions replay(settings(config, capture));
+    replay.frameBegin = 0;
+    replay.frameEnd = 2;
+    OpCounter counter(context_.vk);
+    struct Counting {
+      VulkanContext& vk;
+      ~Counting() { vk.opCounter = nullptr; }
+    } counting{context_.vk};
+    context_.vk.opCounter = &counter;
+    replayCapture(context_.vk, capture, replay, nullptr);
+    return lastFramePerPass(counter.dispatches(), livePasses(config));
+  }
+
+  VulkanContext& vk() { return context_.vk; }
+
  private:
   Options options_;
   Capture source_;
@@ -166,6 +201,7 @@ class Harness {
 };
 
 Harness* harness = nullptr;
+std::vector<Config> floorConfigs;  // every configuration registered by registerConfig, in order
 
 // One benchmark = one series of samples; repetition i reports sample i as manual time.
 void registerSeries(const std::string& name, Config config, std::string pass) {
@@ -189,6 +225,7 @@ void registerSeries(const std::string& name, Config config, std::string pass) {
 }
 
 void registerConfig(const Config& config) {
+  floorConfigs.push_back(config);
   registerSeries("pipeline/" + config.label(), config, "pipeline");
   for (const auto& pass : harness->livePasses(config)) registerSeries(pass + "/" + config.label(), config, pass);
 }
@@ -291,11 +328,39 @@ Options parseOwnFlags(int& argc, char** argv) {
     else if (auto d = value("--device")) o.device = *d;
     else if (auto c = value("--capture")) o.capture = *c;
     else if (auto c2 = value("--cache")) o.cache = *c2;
+    else if (arg == "--floor") o.floor = true;
+    else if (arg == "--no-rates") o.rates = false;
+    else if (auto fj = value("--floor-json")) o.floorJson = *fj;
+    else if (auto rm = value("--rate-mib")) o.rateMib = parseInt(*rm, "--rate-mib", 1, 4096);
+    else if (auto rs = value("--rate-size")) o.rateSize = parseSize(*rs, "--rate-size");
     else argv[kept++] = argv[i];
   }
   argc = kept;
   for (const auto& t : o.techniques) findTechnique(t);  // an unknown name is bad usage: exit 2
   return o;
+}
+
+// --floor: counts of every registered configuration, the device's rates, and the table.
+void reportFloor() {
+  const auto& o = harness->options();
+  std::optional<DeviceRates> rates;
+  if (o.rates) rates = measureDeviceRates(harness->vk(), uint64_t(o.rateMib) << 20, o.rateSize, 20, o.warmupMs);
+  std::vector<PassFloor> rows;
+  for (const auto& config : floorConfigs) {
+    const Measured* m = harness->alreadyMeasured(config);
+    for (const auto& counts : harness->count(config)) {
+      std::optional<double> ms;
+      if (m)
+        if (auto found = m->passMs.find(counts.pass); found != m->passMs.end()) ms = summarize(found->second).median;
+      rows.push_back(passFloor(config.label(), counts, rates ? &*rates : nullptr, ms));
+    }
+  }
+  printFloorTable(stdout, rows, rates ? &*rates : nullptr);
+  if (!o.floorJson.empty()) {
+    std::ofstream out(o.floorJson);
+    out << floorJson(rows, rates ? &*rates : nullptr, harness->device().name).dump(1) << "\n";
+    if (!out) throw std::runtime_error("cannot write " + o.floorJson);
+  }
 }
 
 }  // namespace
@@ -313,6 +378,7 @@ int main(int argc, char** argv) {
     registerAll();
     benchmark::RunSpecifiedBenchmarks();
     printScaling(stderr, scalingInput());
+    if (h.options().floor) reportFloor();
     benchmark::Shutdown();
   } catch (const aor::InputError& e) {  // bad usage, like an unrecognised flag: exit 2
     fmt::print(stderr, "ao_bench: error: {}\n", e.what());

@@ -17,5 +17,7 @@ std::span<const EmbeddedShader> aor_shaders();  // generated index of shaders/
 // The shader called `name` in `index` (default: shaders/); throws std::logic_error naming it when
 // there is none.
 std::span<const uint32_t> code(std::string_view name, std::span<const EmbeddedShader> index = aor_shaders());
+// The text of shaders/counting/count_ops.glsl, which the counting build inserts into every shader.
+std::string_view countOpsPrelude();
 
 }  // namespace aor::spirv

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "vk/op_counter.h"
+
 namespace aor::graph {
 
 const GpuImage& PassContext::image(ResourceId id) const {
@@ -77,6 +79,36 @@ BoundResource bindOne(graph::PassContext& ctx, const ShaderBinding& binding, con
   return r;
 }
 
+// What a counted dispatch reads and writes of its bindings (vk/op_counter.h): each bound
+// subresource once, read when a live access of the pass reads it, written when one writes it.
+struct BoundBytes {
+  uint64_t read = 0, written = 0;
+};
+BoundBytes boundBytes(const graph::PassContext& ctx, std::span<const Bind> bindings) {
+  BoundBytes out;
+  for (const Bind& bind : bindings) {
+    const graph::ResourceDecl& decl = ctx.graph.resources().at(bind.id);
+    uint64_t bytes = decl.buffer.bytes;
+    graph::Subresources range{0, 1, 0, 1};
+    if (!decl.isBuffer()) {
+      range = bind.range.resolve(decl.desc);
+      graph::ImageDesc part{std::max(1u, decl.desc.width >> range.baseMip), std::max(1u, decl.desc.height >> range.baseMip),
+                            decl.desc.format, range.mipCount, range.layerCount};
+      bytes = graph::imageBytes(part);
+    }
+    bool reads = false, writes = false;
+    for (size_t a = 0; a < ctx.pass->accesses.size(); ++a) {
+      const auto& access = ctx.pass->accesses[a];
+      if (access.resource != bind.id || !ctx.compiled->accessLive[a] || !graph::overlaps(access.range, range)) continue;
+      writes |= access.access == graph::Access::StorageWrite;
+      reads |= access.access != graph::Access::StorageWrite;
+    }
+    out.read += reads ? bytes : 0;
+    out.written += writes ? bytes : 0;
+  }
+  return out;
+}
+
 }  // namespace
 
 void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, std::span<const Bind> bindings,
@@ -95,7 +127,15 @@ void dispatchCompute(graph::PassContext& ctx, const ComputePipeline& pipeline, s
     bound.push_back(bindOne(ctx, declared[i], b, i));
     ++i;
   }
-  recordDispatch(ctx.vk, ctx.cmd, pipeline, bound, pushConstants, groups);
+  if (pipeline.shader.opCounterBinding < 0) {
+    recordDispatch(ctx.vk, ctx.cmd, pipeline, bound, pushConstants, groups);
+    return;
+  }
+  if (!ctx.vk.opCounter) throw std::logic_error(fmt::format("pass '{}' records a counting pipeline outside a counted replay", ctx.pass->name));
+  BoundBytes bytes = boundBytes(ctx, bindings);
+  uint64_t invocations = uint64_t{groups.x} * groups.y * groups.z * pipeline.localSize[0] * pipeline.localSize[1] * pipeline.localSize[2];
+  BoundResource slot = ctx.vk.opCounter->slot(ctx.pass->name, bytes.read, bytes.written, invocations);
+  recordDispatch(ctx.vk, ctx.cmd, pipeline, bound, pushConstants, groups, &slot);
 }
 
 }  // namespace aor

@@ -9,6 +9,8 @@
 
 namespace aor {
 
+class OpCounter;
+
 struct ContextOptions {
   std::string deviceSelector;  // empty: lavapipe if present, else the first device
   bool validate = false;       // Khronos validation with synchronization validation
@@ -41,6 +43,9 @@ struct VulkanContext {
   DeviceInfo info;
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
+  // Set while a replay counts its passes' work (vk/op_counter.h): pipelines come from the counting
+  // build and every dispatch gets a counter slot. Owned by whoever set it.
+  OpCounter* opCounter = nullptr;
 
   // Validation messages (warnings and errors); any one fails a --validate run.
   std::mutex messageMutex;

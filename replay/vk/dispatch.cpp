@@ -16,12 +16,15 @@ DispatchGroups groupsFor(const ComputePipeline& pipeline, uint32_t x, uint32_t y
 }
 
 void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline,
-                    std::span<const BoundResource> bindings, const void* pushConstants, DispatchGroups groups) {
+                    std::span<const BoundResource> bindings, const void* pushConstants, DispatchGroups groups,
+                    const BoundResource* opCounts) {
   const auto& declared = pipeline.shader.bindings;
   if (bindings.size() != declared.size())
     throw std::logic_error(fmt::format("dispatch binds {} resources; the shader declares {}", bindings.size(), declared.size()));
+  if ((pipeline.shader.opCounterBinding >= 0) != (opCounts != nullptr))
+    throw std::logic_error(opCounts ? "a counter slot for a pipeline that does not count" : "a counting pipeline without a counter slot");
   std::vector<VkDescriptorImageInfo> images(bindings.size());
-  std::vector<VkDescriptorBufferInfo> buffers(bindings.size());
+  std::vector<VkDescriptorBufferInfo> buffers(bindings.size() + 1);
   std::vector<VkWriteDescriptorSet> writes;
   for (uint32_t i = 0; i < bindings.size(); ++i) {
     const BoundResource& r = bindings[i];
@@ -47,6 +50,15 @@ void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipelin
         throw std::logic_error(fmt::format("binding {} ('{}') is a {}, which dispatches cannot bind", i, declared[i].name,
                                            descriptorTypeName(declared[i].type)));
     }
+    writes.push_back(write);
+  }
+  if (opCounts) {
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstBinding = uint32_t(pipeline.shader.opCounterBinding);
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    buffers.back() = {opCounts->buffer, opCounts->offset, opCounts->range};
+    write.pBufferInfo = &buffers.back();
     writes.push_back(write);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);

@@ -30,8 +30,10 @@ DispatchGroups groupsFor(const ComputePipeline& pipeline, uint32_t invocationsX,
                          uint32_t invocationsZ = 1);
 
 // Binds `pipeline`, pushes the descriptors (binding i = bindings[i]) and push constants, and
-// dispatches `groups`.
+// dispatches `groups`. A counting-build pipeline (vk/op_counter.h) also needs `opCounts`, its
+// dispatch's counter slot.
 void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipeline& pipeline,
-                    std::span<const BoundResource> bindings, const void* pushConstants, DispatchGroups groups);
+                    std::span<const BoundResource> bindings, const void* pushConstants, DispatchGroups groups,
+                    const BoundResource* opCounts = nullptr);
 
 }  // namespace aor

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include "embedded_shaders.h"
+#include "vk/context.h"
+#include "vk/op_counter.h"
 
 namespace aor {
 
@@ -26,7 +28,9 @@ const ComputePipeline& PipelineCache::get(const ShaderCode& shader, std::span<co
 }
 
 const ComputePipeline& PipelineCache::get(const std::string& embeddedName, std::span<const SpecializationValue> specialization) {
-  return get(ShaderCode{embeddedName, spirv::code(embeddedName)}, specialization);
+  // While a replay counts (vk/op_counter.h), every embedded shader is its counting build.
+  std::string name = vk_.opCounter ? embeddedName + std::string(kCountingBuildSuffix) : embeddedName;
+  return get(ShaderCode{name, spirv::code(name)}, specialization);
 }
 
 }  // namespace aor

@@ -169,6 +169,8 @@ ComputePipeline createComputePipeline(const VulkanContext& ctx, std::span<const 
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
   for (uint32_t i = 0; i < p.shader.bindings.size(); ++i)
     layoutBindings.push_back({i, p.shader.bindings[i].type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  if (p.shader.opCounterBinding >= 0)
+    layoutBindings.push_back({uint32_t(p.shader.opCounterBinding), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   setInfo.bindingCount = uint32_t(layoutBindings.size());

@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <spirv_cross/spirv_cross_c.h>
@@ -64,6 +65,10 @@ ShaderInterface reflectComputeShader(std::span<const uint32_t> spirv, const std:
       unsigned set = spvc_compiler_get_decoration(compiler, r.id, SpvDecorationDescriptorSet);
       unsigned binding = spvc_compiler_get_decoration(compiler, r.id, SpvDecorationBinding);
       spvc_type type = spvc_compiler_get_type_handle(compiler, r.type_id);
+      if (kind.type == SPVC_RESOURCE_TYPE_STORAGE_BUFFER && std::string_view(spvc_compiler_get_name(compiler, r.base_type_id)) == "AoOpCounts") {
+        out.opCounterBinding = int(binding);
+        continue;
+      }
       if (set != 0) throw fail(fmt::format("'{}' is in descriptor set {}; only set 0 is bound", r.name, set));
       if (spvc_type_get_num_array_dimensions(type) != 0) throw fail(fmt::format("'{}' is a descriptor array", r.name));
       if (binding >= out.bindings.size()) out.bindings.resize(binding + 1);

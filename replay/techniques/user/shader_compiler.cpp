@@ -13,6 +13,7 @@
 #include <shaderc/shaderc.hpp>
 
 #include "capture/input_error.h"
+#include "embedded_shaders.h"
 #include "capture/json_input.h"
 #include "techniques/user/user_header.h"
 #include "vk/shader_reflection.h"
@@ -211,12 +212,12 @@ fs::path userShaderCacheFolder() {
   return {};
 }
 
-CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passIndex) {
+CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passIndex, bool countingBuild) {
   const UserPass& pass = spec.passes[passIndex];
   const std::string display = displayOf(spec, pass.shader.lexically_relative(spec.folder).string());
   const std::string source = readBoundedText(pass.shader, kMaxSourceBytes, display);
   checkPreamble(source, display, spec, passIndex);
-  const std::string header = userPassHeader(spec, pass);
+  const std::string header = userPassHeader(spec, pass) + (countingBuild ? std::string(spirv::countOpsPrelude()) : "");
 
   const fs::path cacheFolder = userShaderCacheFolder();
   uint64_t key = fnv1a(shadercVersion());

@@ -25,7 +25,8 @@ struct CompiledUserShader {
   bool fromCache = false;
 };
 
-// The SPIR-V of `spec.passes[passIndex]`. Throws InputError.
-CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passIndex);
+// The SPIR-V of `spec.passes[passIndex]`. Throws InputError. `countingBuild`: the shader's counting
+// build (vk/op_counter.h), the counting prelude appended to its generated header.
+CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passIndex, bool countingBuild = false);
 
 }  // namespace aor

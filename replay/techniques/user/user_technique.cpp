@@ -14,6 +14,7 @@
 #include "techniques/user/shader_compiler.h"
 #include "techniques/user/user_header.h"
 #include "techniques/user/user_technique_spec.h"
+#include "vk/op_counter.h"
 
 namespace aor {
 namespace fs = std::filesystem;
@@ -26,6 +27,15 @@ struct UserTechnique {
   UserTechniqueSpec spec;
   std::vector<std::vector<uint32_t>> spirv;  // per pass
   std::vector<std::string> pipelineNames;   // per pass, unique in the process
+  // Per pass, the counting build (vk/op_counter.h), compiled the first time a counted replay runs it.
+  mutable std::mutex countingMutex;
+  mutable std::map<size_t, std::vector<uint32_t>> countingSpirv;
+  ShaderCode countingCode(size_t pass) const {
+    std::lock_guard lock(countingMutex);
+    auto [it, fresh] = countingSpirv.try_emplace(pass);
+    if (fresh) it->second = compileUserPass(spec, pass, true).spirv;
+    return {pipelineNames[pass] + std::string(kCountingBuildSuffix), it->second};
+  }
   Technique technique;
 };
 
@@ -177,8 +187,8 @@ void addUserPass(FrameBuilder& frame, const UserTechnique& ut, size_t p, const C
         for (const auto& r : pass.reads) b.read(input(r));
         for (const auto& w : pass.writes) b.write(images.at(w.name));
       },
-      [&pipelines, code, binds, size](graph::PassContext& ctx) {
-        const auto& pipeline = pipelines.get(code);
+      [&pipelines, &ut, p, code, binds, size](graph::PassContext& ctx) {
+        const auto& pipeline = pipelines.get(ctx.vk.opCounter ? ut.countingCode(p) : code);
         dispatchCompute(ctx, pipeline, binds, nullptr, 0, groupsFor(pipeline, size.x, size.y));
       });
 }

@@ -1,0 +1,66 @@
+#include "floor.h"
+
+#include <fmt/format.h>
+
+namespace aor::bench {
+
+PassFloor passFloor(const std::string& config, const DispatchCounts& counts, const DeviceRates* rates,
+                    std::optional<double> measuredMs) {
+  PassFloor f;
+  f.config = config;
+  f.counts = counts;
+  f.measuredMs = measuredMs;
+  if (rates) {
+    f.bytesMs = double(counts.bytesRead + counts.bytesWritten) / rates->copyBytesPerMs;
+    f.fetchMs = double(counts.textureReads()) / rates->texelFetchesPerMs;
+  }
+  return f;
+}
+
+void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const DeviceRates* rates) {
+  if (rates)
+    fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, {} MiB buffer), texelFetch {:.1f} G/s (R32F, {}x{})\n",
+               rates->copyBytesPerMs * 1e-6, rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
+               rates->fetchSize.first, rates->fetchSize.second);
+  fmt::print(out, "{:<34} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9} {:>9} {:>7} {}\n", "config", "pass", "tex reads",
+             "stores", "MB read", "MB written", "ms", "floor ms", "ratio", "bound by");
+  for (const auto& r : rows) {
+    std::string ms = r.measuredMs ? fmt::format("{:.4f}", *r.measuredMs) : "-";
+    std::string ratio = r.measuredMs && r.floorMs() > 0 ? fmt::format("{:.2f}", *r.measuredMs / r.floorMs()) : "-";
+    fmt::print(out, "{:<34} {:<18} {:>12} {:>12} {:>10.2f} {:>10.2f} {:>9} {:>9.4f} {:>7} {}\n", r.config, r.counts.pass,
+               r.counts.textureReads(), r.counts.op(OpKind::ImageStore), r.counts.bytesRead * 1e-6,
+               r.counts.bytesWritten * 1e-6, ms, r.floorMs(), ratio, rates ? r.boundBy() : "-");
+  }
+}
+
+nlohmann::json floorJson(const std::vector<PassFloor>& rows, const DeviceRates* rates, const std::string& device) {
+  nlohmann::json j;
+  j["device"] = device;
+  if (rates)
+    j["rates"] = {{"copy_bytes_per_ms", rates->copyBytesPerMs}, {"texel_fetches_per_ms", rates->texelFetchesPerMs},
+                  {"copy_buffer_bytes", rates->copyBytes}, {"fetch_grid", {rates->fetchSize.first, rates->fetchSize.second}}};
+  auto& passes = j["passes"] = nlohmann::json::array();
+  for (const auto& r : rows) {
+    nlohmann::json p{{"config", r.config},
+                     {"pass", r.counts.pass},
+                     {"invocations", r.counts.invocations},
+                     {"bytes_read", r.counts.bytesRead},
+                     {"bytes_written", r.counts.bytesWritten},
+                     {"texture_reads", r.counts.textureReads()}};
+    for (size_t k = 0; k < kOpKinds; ++k) p[opKindName(OpKind(k))] = r.counts.ops[k];
+    if (rates) {
+      p["bytes_ms"] = r.bytesMs;
+      p["fetch_ms"] = r.fetchMs;
+      p["floor_ms"] = r.floorMs();
+      p["bound_by"] = r.boundBy();
+    }
+    if (r.measuredMs) {
+      p["measured_ms"] = *r.measuredMs;
+      if (r.floorMs() > 0) p["ratio"] = *r.measuredMs / r.floorMs();
+    }
+    passes.push_back(std::move(p));
+  }
+  return j;
+}
+
+}  // namespace aor::bench

@@ -1,0 +1,22 @@
+# Writes the counting build's source of one shader (shaders/counting/count_ops.glsl): the shader
+# with the prelude's text inserted after its last leading #extension line (or its #version), where
+# declarations may begin, and a #line so that messages keep the shader's own line numbers.
+file(READ ${SRC} text)
+file(READ ${PRELUDE} prelude)
+string(FIND "${text}" "\n#extension" at REVERSE)
+if(at EQUAL -1)
+  string(FIND "${text}" "#version" at)
+endif()
+if(at EQUAL -1)
+  message(FATAL_ERROR "${SRC}: no #version line")
+endif()
+math(EXPR from "${at} + 1")
+string(SUBSTRING "${text}" ${from} -1 rest)
+string(FIND "${rest}" "\n" eol)
+math(EXPR split "${from} + ${eol} + 1")
+string(SUBSTRING "${text}" 0 ${split} head)
+string(SUBSTRING "${text}" ${split} -1 body)
+string(REGEX MATCHALL "\n" head_lines "${head}")
+list(LENGTH head_lines head_count)
+math(EXPR next_line "${head_count} + 1")
+file(WRITE ${OUT} "${head}${prelude}#line ${next_line}\n${body}")
