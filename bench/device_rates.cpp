@@ -64,7 +64,8 @@ void toGeneral(VkCommandBuffer cmd, VkImage image, VkPipelineStageFlags2 dstStag
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-// The fetch kernel over a width x height grid: milliseconds per dispatch.
+// The fetch kernel over a width x height grid: milliseconds per dispatch. A 1x1 grid (one
+// workgroup, one live invocation) times what a dispatch costs before it does any work.
 double fetchMs(Rig& rig, std::pair<int, int> size, int reps, double warmupMs) {
   VulkanContext& vk = rig.vk;
   auto [width, height] = size;
@@ -110,11 +111,19 @@ double fetchMs(Rig& rig, std::pair<int, int> size, int reps, double warmupMs) {
 DeviceRates measureDeviceRates(VulkanContext& vk, uint64_t copyBytes, std::pair<int, int> fetchSize, int reps, double warmupMs) {
   Rig rig(vk);
   DeviceRates rates;
-  rates.copyBytes = copyBytes;
   rates.fetchSize = fetchSize;
-  rates.copyBytesPerMs = 2.0 * double(copyBytes) / copyMs(rig, copyBytes, reps, warmupMs);
+  for (uint64_t bytes = std::min<uint64_t>(copyBytes, 1u << 20);; bytes = std::min(bytes * 4, copyBytes)) {
+    CopyRate copy{bytes, 2.0 * double(bytes) / copyMs(rig, bytes, reps, warmupMs)};
+    rates.copies.push_back(copy);
+    if (copy.bytesPerMs > rates.copyBytesPerMs) {
+      rates.copyBytesPerMs = copy.bytesPerMs;
+      rates.copyBytes = bytes;
+    }
+    if (bytes == copyBytes) break;
+  }
   double fetches = double(fetchSize.first) * fetchSize.second * shader::kFetchRateTaps;
   rates.texelFetchesPerMs = fetches / fetchMs(rig, fetchSize, reps, warmupMs);
+  rates.dispatchMs = fetchMs(rig, {1, 1}, reps, warmupMs);
   return rates;
 }
 

@@ -1,22 +1,37 @@
 #pragma once
 // A device's measured rates, the denominators of a pass's floor (bench/floor.h): the bandwidth of
-// a large buffer copy (vkCmdCopyBuffer, bytes read plus bytes written per ms) and the rate of
-// texelFetch from an R32F image in cache (fetch_rate.comp), each the median of `reps` timed runs
-// after a warm-up, from timestamp queries.
+// buffer copies (vkCmdCopyBuffer, bytes read plus bytes written per ms) at sizes from 1 MiB up to
+// the largest asked, the rate of texelFetch from an R32F image in cache (fetch_rate.comp), and the
+// time of one dispatch of a single workgroup; each the median of `reps` timed runs after a
+// warm-up, from timestamp queries.
+//
+// Why several copy sizes: a floor is the least time the work can take, and a pass's images are
+// often still in the last-level cache from the pass that wrote them (an H200's L2 holds 50 MB, a
+// 4K R32F image is 33 MB), so DRAM bandwidth alone overstates the floor (measured / floor fell to
+// x0.33 on linearize_depth). The floor uses the fastest copy measured; every size's rate is kept.
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "vk/context.h"
 
 namespace aor::bench {
 
+struct CopyRate {
+  uint64_t bytes = 0;       // the copied buffer's size
+  double bytesPerMs = 0;    // read + written
+};
+
 struct DeviceRates {
-  double copyBytesPerMs = 0;     // read + written
+  double copyBytesPerMs = 0;     // the fastest of `copies`
   double texelFetchesPerMs = 0;
-  uint64_t copyBytes = 0;        // the copied buffer's size
+  double dispatchMs = 0;         // one dispatch of one workgroup, the least any pass can take
+  uint64_t copyBytes = 0;        // the size the fastest copy ran at
+  std::vector<CopyRate> copies;  // 1 MiB, 4 MiB, ... up to the largest asked
   std::pair<int, int> fetchSize;  // the fetch kernel's grid
 };
 
+// `copyBytes`: the largest copy.
 DeviceRates measureDeviceRates(VulkanContext& vk, uint64_t copyBytes, std::pair<int, int> fetchSize, int reps,
                                double warmupMs);
 

@@ -13,15 +13,19 @@ PassFloor passFloor(const std::string& config, const DispatchCounts& counts, con
   if (rates) {
     f.bytesMs = double(counts.bytesRead + counts.bytesWritten) / rates->copyBytesPerMs;
     f.fetchMs = double(counts.textureReads()) / rates->texelFetchesPerMs;
+    f.dispatchMs = double(counts.dispatches) * rates->dispatchMs;
   }
   return f;
 }
 
 void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const DeviceRates* rates) {
   if (rates)
-    fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, {} MiB buffer), texelFetch {:.1f} G/s (R32F, {}x{})\n",
+    fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, fastest at {} MiB), texelFetch {:.1f} G/s (R32F, {}x{}), "
+               "empty dispatch {:.4f} ms\n",
                rates->copyBytesPerMs * 1e-6, rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
-               rates->fetchSize.first, rates->fetchSize.second);
+               rates->fetchSize.first, rates->fetchSize.second, rates->dispatchMs);
+  if (rates)
+    for (const auto& c : rates->copies) fmt::print(out, "  copy {:>5} MiB: {:.1f} GB/s\n", c.bytes >> 20, c.bytesPerMs * 1e-6);
   fmt::print(out, "{:<34} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9} {:>9} {:>7} {}\n", "config", "pass", "tex reads",
              "stores", "MB read", "MB written", "ms", "floor ms", "ratio", "bound by");
   for (const auto& r : rows) {
@@ -36,9 +40,13 @@ void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const D
 nlohmann::json floorJson(const std::vector<PassFloor>& rows, const DeviceRates* rates, const std::string& device) {
   nlohmann::json j;
   j["device"] = device;
-  if (rates)
+  if (rates) {
     j["rates"] = {{"copy_bytes_per_ms", rates->copyBytesPerMs}, {"texel_fetches_per_ms", rates->texelFetchesPerMs},
-                  {"copy_buffer_bytes", rates->copyBytes}, {"fetch_grid", {rates->fetchSize.first, rates->fetchSize.second}}};
+                  {"dispatch_ms", rates->dispatchMs}, {"copy_buffer_bytes", rates->copyBytes},
+                  {"fetch_grid", {rates->fetchSize.first, rates->fetchSize.second}}};
+    auto& copies = j["rates"]["copies"] = nlohmann::json::array();
+    for (const auto& c : rates->copies) copies.push_back({{"bytes", c.bytes}, {"bytes_per_ms", c.bytesPerMs}});
+  }
   auto& passes = j["passes"] = nlohmann::json::array();
   for (const auto& r : rows) {
     nlohmann::json p{{"config", r.config},
@@ -51,6 +59,7 @@ nlohmann::json floorJson(const std::vector<PassFloor>& rows, const DeviceRates* 
     if (rates) {
       p["bytes_ms"] = r.bytesMs;
       p["fetch_ms"] = r.fetchMs;
+      p["dispatch_ms"] = r.dispatchMs;
       p["floor_ms"] = r.floorMs();
       p["bound_by"] = r.boundBy();
     }

@@ -21,9 +21,14 @@ struct GtaoCpuPixel {
   bool kThin;
   const std::vector<float>* distance;
   const std::vector<vec3>* viewNormals;
+  uint64_t loads = 0;  // calls of the two load functions, as the counting build counts them
 
-  float gtaoLoadDistance(ivec2 pixel) const { return (*distance)[size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x)]; }
-  vec3 gtaoLoadViewNormal(ivec2 pixel) const {
+  float gtaoLoadDistance(ivec2 pixel) {
+    ++loads;
+    return (*distance)[size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x)];
+  }
+  vec3 gtaoLoadViewNormal(ivec2 pixel) {
+    ++loads;
     return (*viewNormals)[size_t(pixel.y) * size_t(pc.size.x) + size_t(pixel.x)];
   }
 #include "gtao/gtao_pixel.glsl"
@@ -32,7 +37,8 @@ struct GtaoCpuPixel {
 }  // namespace
 }  // namespace shader
 
-CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const GtaoSettings& settings) {
+CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const GtaoSettings& settings,
+                     uint64_t* imageLoads) {
   size_t pixels = size_t(camera.width) * size_t(camera.height);
   std::vector<float> distance = linearViewDistances({gbuffer.depth.data(), pixels}, camera.projection);
   std::vector<glm::vec3> normals(pixels, glm::vec3(0.0f));
@@ -48,9 +54,11 @@ CpuAoImage gtaoOnCpu(const GBuffer& gbuffer, const FrameCamera& camera, const Gt
   // At half resolution texel t is pixel 2t with the texel's noise, as gtao.comp's main() does.
   int divisor = aoResolutionDivisor(settings);
   glm::ivec2 size = aoWorkingSize(camera, settings);
-  return computeAoImage<float>(size.x, size.y, settings.bent, [&](glm::ivec2 t, glm::vec3& bent) {
+  CpuAoImage image = computeAoImage<float>(size.x, size.y, settings.bent, [&](glm::ivec2 t, glm::vec3& bent) {
     return pixel.gtaoPixelWithNoise(t * divisor, shader::gtaoNoise(t, camera.frameIndex), bent);
   });
+  if (imageLoads) *imageLoads = pixel.loads;
+  return image;
 }
 
 }  // namespace aor

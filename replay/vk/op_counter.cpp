@@ -41,7 +41,8 @@ OpCounter::~OpCounter() { destroyBuffer(vk_, buffer_); }
 
 BoundResource OpCounter::slot(const std::string& pass, uint64_t bytesRead, uint64_t bytesWritten, uint64_t invocations) {
   if (recorded_.size() >= maxDispatches_)
-    throw std::runtime_error(fmt::format("op counter: more than {} counted dispatches", maxDispatches_));
+    throw std::runtime_error(fmt::format("op counter: pass {} would be counted dispatch {}, more than the {} a counter holds",
+                                         pass, recorded_.size() + 1, maxDispatches_));
   DispatchCounts d;
   d.pass = pass;
   d.bytesRead = bytesRead;
@@ -78,6 +79,7 @@ std::vector<DispatchCounts> lastFramePerPass(const std::vector<DispatchCounts>& 
     while (begin > 0 && dispatches[begin - 1].pass == pass) --begin;
     DispatchCounts sum;
     sum.pass = pass;
+    sum.dispatches = end - begin;
     for (size_t i = begin; i < end; ++i) {
       for (size_t k = 0; k < kOpKinds; ++k) sum.ops[k] += dispatches[i].ops[k];
       sum.bytesRead += dispatches[i].bytesRead;

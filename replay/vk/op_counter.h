@@ -32,6 +32,7 @@ struct DispatchCounts {
   uint64_t bytesRead = 0;     // of the bound subresources a live access reads (each once)
   uint64_t bytesWritten = 0;  // of those a live access writes
   uint64_t invocations = 0;   // workgroups x workgroup size
+  uint64_t dispatches = 1;    // summed per pass by lastFramePerPass
   uint64_t op(OpKind kind) const { return ops[size_t(kind)]; }
   // Accesses through the texture path: fetches, filtered samples, gathers and image loads.
   uint64_t textureReads() const;
