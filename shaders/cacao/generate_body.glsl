@@ -182,7 +182,7 @@ void main() {
 #endif
 #else
   int taps = kAdaptiveBase ? kCacaoAdaptiveTapBaseCount : cacaoTapCount(kQuality);
-  for (int i = 0; i < taps; ++i) tap(c, p, layer, i, obscuranceSum, weightSum);
+  AOR_UNROLL for (int i = 0; i < taps; ++i) tap(c, p, layer, i, obscuranceSum, weightSum);
 #endif
 
   float obscurance = obscuranceSum / weightSum;
