@@ -8,6 +8,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = kCacaoSpecLayerMask) const int kLayerMask = 15;
+layout(constant_id = kCacaoSpecFirstChannel) const int kFirstChannel = 0;  // 1: green first (the packed edges)
 layout(set = 0, binding = 0) uniform sampler2DArray layers;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D tiled;
 
@@ -18,5 +19,5 @@ void main() {
   ivec2 tile = p / layerSize;
   int layer = tile.x + 2 * tile.y;
   vec4 value = ((kLayerMask >> layer) & 1) != 0 ? texelFetch(layers, ivec3(p - tile * layerSize, layer), 0) : vec4(0.0);
-  imageStore(tiled, p, value);
+  imageStore(tiled, p, kFirstChannel == 1 ? value.yxzw : value);
 }

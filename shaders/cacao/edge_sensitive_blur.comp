@@ -61,8 +61,8 @@ void main() {
 
   vec4 edges[kCacaoBlurTileWidth][kCacaoBlurTileHeight];
   float packedEdges[kCacaoBlurTileWidth][kCacaoBlurTileHeight];
-  for (int y = 0; y < kCacaoBlurTileHeight; ++y)
-    for (int x = 0; x < kCacaoBlurTileWidth; ++x) {
+  AOR_UNROLL for (int y = 0; y < kCacaoBlurTileHeight; ++y)
+    AOR_UNROLL for (int x = 0; x < kCacaoBlurTileWidth; ++x) {
       ivec2 p = imageCoord + ivec2(x, y);
       vec2 v = texelFetch(ssaoIn, ivec3(mirrorIndex(p.x, size.x), mirrorIndex(p.y, size.y), layer), 0).xy;
       front[base.x + x + 2][base.y + y + 1] = toHalf(v.x);
@@ -71,7 +71,7 @@ void main() {
     }
   barrier();
 
-  for (int pass = 0; pass < kBlurPasses; ++pass) {
+  AOR_UNROLL for (int pass = 0; pass < kBlurPasses; ++pass) {
     bool fromFront = pass % 2 == 0;
     float result[kCacaoBlurTileWidth][kCacaoBlurTileHeight];
     for (int y = 0; y < kCacaoBlurTileHeight; ++y)
@@ -88,8 +88,8 @@ void main() {
     barrier();
   }
 
-  for (int y = 0; y < kCacaoBlurTileHeight; ++y)
-    for (int x = 0; x < kCacaoBlurTileWidth; ++x) {
+  AOR_UNROLL for (int y = 0; y < kCacaoBlurTileHeight; ++y)
+    AOR_UNROLL for (int x = 0; x < kCacaoBlurTileWidth; ++x) {
       ivec2 local = base + ivec2(x, y);
       if (any(lessThan(local, ivec2(kBlurPasses))) || any(greaterThanEqual(local, ivec2(kTileW, kTileH) - kBlurPasses))) continue;
       ivec2 p = imageCoord + ivec2(x, y);

@@ -174,7 +174,12 @@ void main() {
   float additionalSampleCountFlt = float(kCacaoAdaptiveTapFlexibleCount) * importance + 1.5;
   uint additionalSamples = uint(additionalSampleCountFlt);
   int additionalSamplesTo = int(min(uint(kCacaoMaxTaps), additionalSamples + uint(kCacaoAdaptiveTapBaseCount)));
-  for (int i = kCacaoAdaptiveTapBaseCount; i < additionalSamplesTo; ++i) adaptiveTap(c, p, layer, i, obscuranceSum, weightSum);
+  // Unrolled to the most taps with an exit: every copy then indexes the pattern with a constant
+  // (lavapipe keeps a loop with a dynamic bound rolled, and its dynamic pattern index costs x40).
+  AOR_UNROLL for (int i = kCacaoAdaptiveTapBaseCount; i < kCacaoMaxTaps; ++i) {
+    if (i >= additionalSamplesTo) break;
+    adaptiveTap(c, p, layer, i, obscuranceSum, weightSum);
+  }
 #ifdef CACAO_COUNT_TAPS
   uint bucket = unlimitedImportance >= 0.5 ? 0u : 2u;
   atomicAdd(adaptiveTaps[bucket], uint(additionalSamplesTo - kCacaoAdaptiveTapBaseCount));
@@ -182,7 +187,7 @@ void main() {
 #endif
 #else
   int taps = kAdaptiveBase ? kCacaoAdaptiveTapBaseCount : cacaoTapCount(kQuality);
-  for (int i = 0; i < taps; ++i) tap(c, p, layer, i, obscuranceSum, weightSum);
+  AOR_UNROLL for (int i = 0; i < taps; ++i) tap(c, p, layer, i, obscuranceSum, weightSum);
 #endif
 
   float obscurance = obscuranceSum / weightSum;

@@ -9,6 +9,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = kCacaoSpecDownsampled) const bool kDownsampled = false;
+layout(constant_id = kCacaoSpecDepthMipLevels) const int kMipLevels = 4;  // bindings past the last level repeat it: not written
 layout(set = 0, binding = 1) uniform sampler2D depthIn;
 layout(set = 0, binding = 2, r16f) uniform writeonly image2DArray depthMip0;
 layout(set = 0, binding = 3, r16f) uniform writeonly image2DArray depthMip1;
@@ -18,6 +19,7 @@ layout(set = 0, binding = 5, r16f) uniform writeonly image2DArray depthMip3;
 shared float scratch[4][8][8];
 
 void storeIfInside(int level, ivec2 p, int layer, float value) {
+  if (level >= kMipLevels) return;
   ivec3 at = ivec3(p, layer);
   if (level == 0 && all(lessThan(p, imageSize(depthMip0).xy))) imageStore(depthMip0, at, vec4(value));
   if (level == 1 && all(lessThan(p, imageSize(depthMip1).xy))) imageStore(depthMip1, at, vec4(value));

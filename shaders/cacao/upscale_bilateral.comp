@@ -7,6 +7,7 @@
 // output pixels, a 5x5 Gaussian in distance times a Gaussian in view-depth difference.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
 #include "cacao_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -78,7 +79,7 @@ void main() {
     int threadNum = (gtid.y * 8 + gtid.x) * 3;
     ivec2 bufferCoord = ivec2(threadNum % kBufferW, threadNum / kBufferW);
     ivec2 imageCoord = gid * 8 + bufferCoord - 2;
-    for (int i = 0; i < 3; ++i) {
+    AOR_UNROLL for (int i = 0; i < 3; ++i) {
       // FidelityFX reads outside the buffers at the top and left (D3D returns 0 there); clamped here.
       ivec2 q = clamp(imageCoord + ivec2(i, 0), ivec2(0), halfSize - 1);
       vec2 value = kVariant == kCacaoVariantSmart ? smartTexel(c, q) : nonSmartTexel(c, q);
@@ -101,8 +102,8 @@ void main() {
   vec4 totalWeights = vec4(epsilonWeight);
   float distSigma = 1.0 / c.bilateralSimilarityDistanceSigma;
   float sigma = 1.0 / c.bilateralSigmaSquared;
-  for (int x = -2; x <= 2; ++x)
-    for (int y = -2; y <= 2; ++y) {
+  AOR_UNROLL for (int x = -2; x <= 2; ++x)
+    AOR_UNROLL for (int y = -2; y <= 2; ++y) {
       float s = bufferSsao[centre.x + x][centre.y + y], d = bufferDepth[centre.x + x][centre.y + y];
       vec2 u = vec2(x) - vec2(0.0, 0.5);
       vec2 v1 = vec2(y), v2 = vec2(y) - vec2(0.5);
@@ -120,6 +121,6 @@ void main() {
   vec4 outputValues = totals / totalWeights;
   ivec2 size = ivec2(c.outputBufferDimensions);
   ivec2 offsets[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(0, 1), ivec2(1, 1));
-  for (int k = 0; k < 4; ++k)
+  AOR_UNROLL for (int k = 0; k < 4; ++k)
     if (all(lessThan(full + offsets[k], size))) imageStore(aoOut, full + offsets[k], vec4(outputValues[k]));
 }

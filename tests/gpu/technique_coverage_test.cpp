@@ -75,6 +75,10 @@ const std::map<std::string, std::vector<std::string>> kExpectedKeys = {
     {"sao",
      {"radius", "bias", "intensity", "samples", "spiral_turns", "blur_radius", "blur_step", "edge_sharpness", "csz32",
       "dual_layer", "temporal"}},
+    {"cacao",
+     {"radius", "quality", "shadow_multiplier", "shadow_power", "shadow_clamp", "horizon_angle_threshold", "fade_out_from",
+      "fade_out_to", "adaptive_quality_limit", "blur_pass_count", "sharpness", "detail_shadow_strength", "generate_normals",
+      "bilateral_sigma_squared", "bilateral_similarity_distance_sigma", "downsample"}},
     {"hemisphere_ssao", {"radius", "samples", "strength", "bias", "blur"}},  // examples/techniques/hemisphere_ssao
 };
 
@@ -177,7 +181,7 @@ TEST(TechniqueKeys, AKeyTheTechniqueLacksIsAnErrorListingItsKeys) {
   EXPECT_FALSE(fs::exists(out));
   r = runAoreplay(fmt::format("run {} --technique nosuch --out {}", capture.string(), out.string()));
   EXPECT_EQ(r.exitCode, 2) << r.output;
-  EXPECT_NE(r.output.find("unknown technique 'nosuch' (gtao, reference"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("unknown technique 'nosuch' (cacao, gtao, reference"), std::string::npos) << r.output;
 }
 
 }  // namespace
