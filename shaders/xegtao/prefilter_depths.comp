@@ -26,15 +26,21 @@ layout(set = 0, binding = 6, std430) writeonly buffer SkyMask { uint skyMask[]; 
 
 shared float scratchDepths[8][8];
 
-// XeGTAO_DepthMIPFilter: the average of four depths, each weighted down the farther it lies
-// behind the nearest, over the falloff of 0.75 x the effect radius.
-float mipFilter(float d0, float d1, float d2, float d3) {
-  float maxDepth = max(max(d0, d1), max(d2, d3));
+// XeGTAO_DepthMIPFilter's falloff over 0.75 x the effect radius: weight = saturate(d * mul + add).
+// The same for every call: computed once per thread (four calls, two divisions each otherwise).
+float falloffMul, falloffAdd;
+void setMipFilterFalloff() {
   float effectRadius = 0.75 * pc.effectRadius * pc.radiusMultiplier;
   float falloffRange = pc.effectFalloffRange * effectRadius;
   float falloffFrom = effectRadius * (1.0 - pc.effectFalloffRange);
-  float falloffMul = -1.0 / falloffRange;
-  float falloffAdd = falloffFrom / falloffRange + 1.0;
+  falloffMul = -1.0 / falloffRange;
+  falloffAdd = falloffFrom / falloffRange + 1.0;
+}
+
+// XeGTAO_DepthMIPFilter: the average of four depths, each weighted down the farther it lies
+// behind the nearest.
+float mipFilter(float d0, float d1, float d2, float d3) {
+  float maxDepth = max(max(d0, d1), max(d2, d3));
   float w0 = clamp((maxDepth - d0) * falloffMul + falloffAdd, 0.0, 1.0);
   float w1 = clamp((maxDepth - d1) * falloffMul + falloffAdd, 0.0, 1.0);
   float w2 = clamp((maxDepth - d2) * falloffMul + falloffAdd, 0.0, 1.0);
@@ -44,14 +50,19 @@ float mipFilter(float d0, float d1, float d2, float d3) {
 }
 
 // The shared front's sky rule (blocks/linearize_depth.h: sky where linearViewDistance returns
-// kSkyDistance) for four depths at once, from XeGTAO's unclamped view z, which is bit for bit the
-// front's distance P32 / (d + P22) (the same division with both operands negated): depth outside
-// [0, far) (NaN, infinite, beyond the far value, out of [0, 1]) or a distance outside (0, 1e15].
-bvec4 skyOf(vec4 depth, vec4 viewZ) {
-  uvec4 nearSide = kReversedDepth ? uvec4(greaterThan(depth, vec4(0.0))) : uvec4(greaterThanEqual(depth, vec4(0.0)));
-  uvec4 farSide = kReversedDepth ? uvec4(lessThanEqual(depth, vec4(1.0))) : uvec4(lessThan(depth, vec4(1.0)));
-  uvec4 inRange = uvec4(greaterThan(viewZ, vec4(0.0))) & uvec4(lessThanEqual(viewZ, vec4(kMaxViewDistance)));
-  return equal(nearSide & farSide & inRange, uvec4(0u));
+// kSkyDistance) for four depths at once, 1 where sky: depth outside [0, far) (NaN, infinite,
+// beyond the far value, out of [0, 1]) or a distance outside (0, 1e15]. The distance is XeGTAO's
+// unclamped view z, bit for bit the front's P32 / (d + P22) (the same division with both operands
+// negated). The depth range is tested on the float's bits, in fewer operations than comparisons:
+// [0, 1) is +0 .. 1 - ulp and -0, (0, 1] is the bits 1 .. those of 1.0 (NaN and infinities lie
+// above, negative values above as unsigned).
+uvec4 skyBits(vec4 depth, vec4 viewZ) {
+  uvec4 bits = floatBitsToUint(depth);
+  const uint one = 0x3f800000u;  // 1.0
+  bvec4 depthValid = kReversedDepth ? lessThan(bits - 1u, uvec4(one))
+                                    : bvec4(uvec4(lessThan(bits, uvec4(one))) | uvec4(equal(bits, uvec4(0x80000000u))));
+  bvec4 distanceValid = bvec4(uvec4(greaterThan(viewZ, vec4(0.0))) & uvec4(lessThanEqual(viewZ, vec4(kMaxViewDistance))));
+  return uvec4(not(bvec4(uvec4(depthValid) & uvec4(distanceValid))));
 }
 
 // XeGTAO writes every texel of the 16x16 tile; a storage write outside the image is undefined in
@@ -76,6 +87,7 @@ bool reduceStep(uvec2 thread, uint stride, out float value) {
 }
 
 void main() {
+  setMipFilterFalloff();
   uvec2 base = gl_GlobalInvocationID.xy;
   uvec2 thread = gl_LocalInvocationID.xy;
   ivec2 pixel = ivec2(base * 2u);
@@ -86,7 +98,7 @@ void main() {
   vec4 depths = xegtaoClampDepth(viewZ);
   float d0 = depths.x, d1 = depths.y, d2 = depths.z, d3 = depths.w;
   // The quad's sky bits (TL, TR, BL, BR = bits 0-3) for the last denoise pass: one word a thread.
-  uvec4 sky = uvec4(skyOf(screenDepths, viewZ)) << uvec4(0u, 1u, 2u, 3u);
+  uvec4 sky = skyBits(screenDepths, viewZ) << uvec4(0u, 1u, 2u, 3u);
   skyMask[xegtaoSkyMaskWord(ivec2(base), pc.viewportSize.x)] = sky.x | sky.y | sky.z | sky.w;
   if (inLevel(0, pixel)) imageStore(depthMip0, pixel, vec4(d0));
   if (inLevel(0, pixel + ivec2(1, 0))) imageStore(depthMip0, pixel + ivec2(1, 0), vec4(d1));
