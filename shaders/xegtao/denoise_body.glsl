@@ -6,11 +6,12 @@
 layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
 layout(constant_id = kXeGtaoSpecBent) const bool kBent = false;
 
-layout(push_constant, scalar) uniform Push { XeGtaoConstants pc; };
 layout(set = 0, binding = 0) uniform usampler2D sourceAoTerm;  // R8_UINT (R32_UINT with bent normals), nearest, clamped
 layout(set = 0, binding = 1) uniform sampler2D sourceEdges;    // R8_UNORM packed edges
+layout(push_constant, scalar) uniform Push { XeGtaoConstants pc; };
 #ifdef XEGTAO_LAST_PASS
 layout(set = 0, binding = 2) uniform writeonly image2D outputAo;  // R16F visibility, or RGBA16F bent.xyz + visibility
+layout(set = 0, binding = 3, std430) readonly buffer SkyMask { uint skyMask[]; };  // the prefilter's, see xegtao.h
 #else
 layout(set = 0, binding = 2) uniform writeonly uimage2D outputAo;  // the working term again
 #endif
@@ -29,11 +30,17 @@ void decodeQuad(uvec4 packedValues, out vec4 decoded[4]) {
   for (int i = 0; i < 4; ++i) decoded[i] = decodeTerm(packedValues[i]);
 }
 
-// XeGTAO_Output.
-void storeTerm(ivec2 pixel, vec4 term) {
-  if (pixel.x >= pc.viewportSize.x || pixel.y >= pc.viewportSize.y) return;
+// XeGTAO_Output. The last pass applies the shared front's sky rule (sky and invalid depth occlude
+// nothing: visibility 1, bent normal towards the viewer), which XeGTAO leaves to the engine; every
+// pass before it blends XeGTAO's own values at sky pixels, as XeGTAO's denoiser does.
+void storeTerm(ivec2 pixel, vec4 term, bool sky) {
+  if (any(greaterThanEqual(pixel, pc.viewportSize))) return;
 #ifdef XEGTAO_LAST_PASS
   float scale = kXeGtaoOcclusionTermScale;
+  if (sky) {
+    vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
+    term = vec4(-xegtaoViewPosition(screenPos, 1.0), 1.0 / scale);  // the view vector, unnormalised
+  }
 #else
   float scale = 1.0;
 #endif
@@ -61,6 +68,13 @@ void main() {
   float blurAmount = pc.denoiseBlurBeta / 5.0;
 #endif
   uvec2 base = gl_GlobalInvocationID.xy * uvec2(2u, 1u);
+#ifdef XEGTAO_LAST_PASS
+  // Both pixels' sky bits are in one word of the prefilter's mask (base.x is even): its quad's row.
+  uint skyBits = skyMask[xegtaoSkyMaskWord(ivec2(base) / 2, pc.viewportSize.x)] >> (2u * (base.y & 1u));
+  bool sky[2] = bool[2]((skyBits & 1u) != 0u, (skyBits & 2u) != 0u);
+#else
+  bool sky[2] = bool[2](false, false);
+#endif
   // Gathers at the top-left corner of `base` (component order x, y, z, w = (-1,+0), (+0,+0),
   // (+0,-1), (-1,-1) from the gather's texel), shifted by their offsets.
   vec2 gatherCenter = vec2(base) * pc.viewportPixelSize;
@@ -113,6 +127,6 @@ void main() {
     sum += weightTR * valueTR; sumWeight += weightTR;
     sum += weightBL * valueBL; sumWeight += weightBL;
     sum += weightBR * valueBR; sumWeight += weightBR;
-    storeTerm(ivec2(base) + ivec2(side, 0), sum / sumWeight);
+    storeTerm(ivec2(base) + ivec2(side, 0), sum / sumWeight, sky[side]);
   }
 }

@@ -7,6 +7,7 @@
 #include "xegtao.h"
 
 layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
+layout(constant_id = kXeGtaoSpecReversedDepth) const bool kReversedDepth = false;  // for the sky mask
 layout(push_constant, scalar) uniform Push {
   XeGtaoConstants pc;
   int mipLevels;  // levels the chain has: fewer than 5 for frames under 16 pixels a side
@@ -18,20 +19,28 @@ layout(set = 0, binding = 2) uniform writeonly image2D depthMip1;
 layout(set = 0, binding = 3) uniform writeonly image2D depthMip2;
 layout(set = 0, binding = 4) uniform writeonly image2D depthMip3;
 layout(set = 0, binding = 5) uniform writeonly image2D depthMip4;
+layout(set = 0, binding = 6, std430) writeonly buffer SkyMask { uint skyMask[]; };  // see xegtao.h
 
 #include "xegtao_common.glsl"
+#include "../blocks/linearize_depth.h"
 
 shared float scratchDepths[8][8];
 
-// XeGTAO_DepthMIPFilter: the average of four depths, each weighted down the farther it lies
-// behind the nearest, over the falloff of 0.75 x the effect radius.
-float mipFilter(float d0, float d1, float d2, float d3) {
-  float maxDepth = max(max(d0, d1), max(d2, d3));
+// XeGTAO_DepthMIPFilter's falloff over 0.75 x the effect radius: weight = saturate(d * mul + add).
+// The same for every call: computed once per thread (four calls, two divisions each otherwise).
+float falloffMul, falloffAdd;
+void setMipFilterFalloff() {
   float effectRadius = 0.75 * pc.effectRadius * pc.radiusMultiplier;
   float falloffRange = pc.effectFalloffRange * effectRadius;
   float falloffFrom = effectRadius * (1.0 - pc.effectFalloffRange);
-  float falloffMul = -1.0 / falloffRange;
-  float falloffAdd = falloffFrom / falloffRange + 1.0;
+  falloffMul = -1.0 / falloffRange;
+  falloffAdd = falloffFrom / falloffRange + 1.0;
+}
+
+// XeGTAO_DepthMIPFilter: the average of four depths, each weighted down the farther it lies
+// behind the nearest.
+float mipFilter(float d0, float d1, float d2, float d3) {
+  float maxDepth = max(max(d0, d1), max(d2, d3));
   float w0 = clamp((maxDepth - d0) * falloffMul + falloffAdd, 0.0, 1.0);
   float w1 = clamp((maxDepth - d1) * falloffMul + falloffAdd, 0.0, 1.0);
   float w2 = clamp((maxDepth - d2) * falloffMul + falloffAdd, 0.0, 1.0);
@@ -40,19 +49,36 @@ float mipFilter(float d0, float d1, float d2, float d3) {
   return (w0 * d0 + w1 * d1 + w2 * d2 + w3 * d3) / weightSum;
 }
 
+// The shared front's sky rule (blocks/linearize_depth.h: sky where linearViewDistance returns
+// kSkyDistance) for four depths at once, 1 where sky: depth outside [0, far) (NaN, infinite,
+// beyond the far value, out of [0, 1]) or a distance outside (0, 1e15]. The distance is XeGTAO's
+// unclamped view z, bit for bit the front's P32 / (d + P22) (the same division with both operands
+// negated). The depth range is tested on the float's bits, in fewer operations than comparisons:
+// [0, 1) is +0 .. 1 - ulp and -0, (0, 1] is the bits 1 .. those of 1.0 (NaN and infinities lie
+// above, negative values above as unsigned).
+uvec4 skyBits(vec4 depth, vec4 viewZ) {
+  uvec4 bits = floatBitsToUint(depth);
+  const uint one = 0x3f800000u;  // 1.0
+  bvec4 depthValid = kReversedDepth ? lessThan(bits - 1u, uvec4(one))
+                                    : bvec4(uvec4(lessThan(bits, uvec4(one))) | uvec4(equal(bits, uvec4(0x80000000u))));
+  bvec4 distanceValid = bvec4(uvec4(greaterThan(viewZ, vec4(0.0))) & uvec4(lessThanEqual(viewZ, vec4(kMaxViewDistance))));
+  return uvec4(not(bvec4(uvec4(depthValid) & uvec4(distanceValid))));
+}
+
 // XeGTAO writes every texel of the 16x16 tile; a storage write outside the image is undefined in
 // Vulkan, so each is bounded by its level's size (and a level the chain lacks is bound to its last
 // and never written).
+// One vector comparison, no short-circuit: glslang turns each `&&` into a branch.
 bool inLevel(int mip, ivec2 texel) {
   ivec2 size = max(pc.viewportSize >> mip, ivec2(1));
-  return mip < mipLevels && texel.x < size.x && texel.y < size.y;
+  return all(lessThan(ivec3(texel, mip), ivec3(size, mipLevels)));
 }
 
 // One reduction step of levels 2-4 (XeGTAO's three `if (groupThreadID % k == 0)` blocks): threads
 // on a `stride` grid reduce the 2x2 of scratch values `stride / 2` apart.
 bool reduceStep(uvec2 thread, uint stride, out float value) {
   value = 0.0;
-  if (thread.x % stride != 0u || thread.y % stride != 0u) return false;
+  if (any(notEqual(thread % stride, uvec2(0u)))) return false;  // XeGTAO's all(groupThreadID % k == 0)
   uint half_ = stride / 2u;
   value = mipFilter(scratchDepths[thread.x][thread.y], scratchDepths[thread.x + half_][thread.y],
                     scratchDepths[thread.x][thread.y + half_], scratchDepths[thread.x + half_][thread.y + half_]);
@@ -61,15 +87,19 @@ bool reduceStep(uvec2 thread, uint stride, out float value) {
 }
 
 void main() {
+  setMipFilterFalloff();
   uvec2 base = gl_GlobalInvocationID.xy;
   uvec2 thread = gl_LocalInvocationID.xy;
   ivec2 pixel = ivec2(base * 2u);
   // The 2x2 quad whose top-left is `pixel`: gather at its centre (w, z, x, y = TL, TR, BL, BR).
   vec4 quad = textureGatherOffset(screenDepth, vec2(pixel) * pc.viewportPixelSize, ivec2(1, 1));
-  float d0 = xegtaoViewDepth(quad.w);
-  float d1 = xegtaoViewDepth(quad.z);
-  float d2 = xegtaoViewDepth(quad.x);
-  float d3 = xegtaoViewDepth(quad.y);
+  vec4 screenDepths = quad.wzxy;  // TL, TR, BL, BR
+  vec4 viewZ = xegtaoUnclampedViewDepth(screenDepths);
+  vec4 depths = xegtaoClampDepth(viewZ);
+  float d0 = depths.x, d1 = depths.y, d2 = depths.z, d3 = depths.w;
+  // The quad's sky bits (TL, TR, BL, BR = bits 0-3) for the last denoise pass: one word a thread.
+  uvec4 sky = skyBits(screenDepths, viewZ) << uvec4(0u, 1u, 2u, 3u);
+  skyMask[xegtaoSkyMaskWord(ivec2(base), pc.viewportSize.x)] = sky.x | sky.y | sky.z | sky.w;
   if (inLevel(0, pixel)) imageStore(depthMip0, pixel, vec4(d0));
   if (inLevel(0, pixel + ivec2(1, 0))) imageStore(depthMip0, pixel + ivec2(1, 0), vec4(d1));
   if (inLevel(0, pixel + ivec2(0, 1))) imageStore(depthMip0, pixel + ivec2(0, 1), vec4(d2));

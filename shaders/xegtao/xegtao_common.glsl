@@ -11,11 +11,17 @@ vec3 xegtaoViewPosition(vec2 screenPos, float viewZ) {
   return vec3((pc.ndcToViewMul * screenPos + pc.ndcToViewAdd) * viewZ, viewZ);
 }
 
-// XeGTAO_ScreenSpaceToViewSpaceDepth then XeGTAO_ClampDepth. NaN depth (invalid input) is taken
-// as the farthest depth rather than left to clamp's undefined NaN handling.
-float xegtaoViewDepth(float screenDepth) {
-  float z = pc.depthUnpackConsts.x / (pc.depthUnpackConsts.y - screenDepth);
-  return isnan(z) ? kXeGtaoMaxDepth : clamp(z, 0.0, kXeGtaoMaxDepth);
+// XeGTAO_ScreenSpaceToViewSpaceDepth, four at once.
+vec4 xegtaoUnclampedViewDepth(vec4 screenDepth) {
+  return pc.depthUnpackConsts.x / (pc.depthUnpackConsts.y - screenDepth);
+}
+
+// XeGTAO_ClampDepth. NaN depth (invalid input) is taken as the farthest depth rather than left to
+// clamp's undefined NaN handling (a select between two values: glslang would branch on a ternary
+// of expressions).
+vec4 xegtaoClampDepth(vec4 z) {
+  vec4 clamped = clamp(z, 0.0, kXeGtaoMaxDepth);
+  return mix(clamped, vec4(kXeGtaoMaxDepth), isnan(z));
 }
 
 // XeGTAO_CalculateEdges: per side, 1 where the neighbour continues the surface (its depth within
@@ -45,11 +51,14 @@ vec4 xegtaoUnpackEdges(float packedValue) {
 // XeGTAO_FastSqrt (Drobot 2014's bit trick).
 float xegtaoFastSqrt(float x) { return intBitsToFloat(0x1fbd1df5 + (floatBitsToInt(x) >> 1)); }
 
-// XeGTAO_FastACos: [-1, 1] to [0, pi] (Lagarde's fit).
+// XeGTAO_FastACos: [-1, 1] to [0, pi] (Lagarde's fit). Both results computed, then selected, as
+// HLSL's ternary does: a GLSL ternary of expressions becomes a branch (5 % of the main pass on
+// lavapipe).
 float xegtaoFastAcos(float x) {
   float ax = abs(x);
   float result = (-0.156583 * ax + 1.570796) * xegtaoFastSqrt(1.0 - ax);
-  return x >= 0.0 ? result : 3.141593 - result;
+  float mirrored = 3.141593 - result;
+  return x >= 0.0 ? result : mirrored;
 }
 
 // XeGTAO_FLOAT4_to_R8G8B8A8_UNORM and back.

@@ -28,12 +28,6 @@ struct PrefilterPush {
   int32_t mipLevels;
 };
 
-struct MainPassPush {
-  shader::XeGtaoConstants c;
-  float projection22, projection32;  // the front's sky test on the capture's depth
-  uint32_t reversedDepth;
-};
-
 VkFormat aoTermFormat(bool bent) { return bent ? VK_FORMAT_R32_UINT : VK_FORMAT_R8_UINT; }
 
 // --debug mip_taps: a zeroed counter per level that the counting variant of the main pass adds to.
@@ -95,27 +89,35 @@ shader::XeGtaoConstants xegtaoConstants(const FrameCamera& camera, const XeGtaoS
   return c;
 }
 
-graph::ResourceId addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings) {
+XeGtaoDepth addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings) {
   glm::uvec2 size = frame.size();
   uint32_t levels = depthMipLevels(size);
   VkFormat format = settings.depth32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R16_SFLOAT;
-  auto mips = frame.graph().createImage("depth_mips", {size.x, size.y, format, levels});
+  XeGtaoDepth out;
+  out.mips = frame.graph().createImage("depth_mips", {size.x, size.y, format, levels});
+  uint32_t maskWords = shader::xegtaoSkyMaskWords(glm::ivec2(size));
+  out.skyMask = frame.graph().createBuffer("sky_mask", {maskWords * sizeof(uint32_t)});
+  auto params = projectionParams(frame.camera().projection, frame.camera().width, frame.camera().height);
   PrefilterPush push{xegtaoConstants(frame.camera(), settings), int32_t(levels)};
+  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecReversedDepth, params.reversedDepth)};
   auto depth = frame.depth();
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
       "xegtao_prefilter",
       [&](graph::PassBuilder& b) {
         b.read(depth, graph::Access::SampledRead);
-        b.write(mips);
+        b.write(out.mips);
+        b.write(out.skyMask, graph::Access::StorageWrite);
       },
-      [&pipelines, push, depth, mips, levels, size](graph::PassContext& ctx) {
+      [&pipelines, push, specialization, depth, out, levels, size](graph::PassContext& ctx) {
         auto level = [&](uint32_t k) { return graph::Subresources::mip(std::min(k, levels - 1)); };
-        dispatchCompute(ctx, pipelines.get("xegtao/prefilter_depths"),
-                        {depth, {mips, level(0)}, {mips, level(1)}, {mips, level(2)}, {mips, level(3)}, {mips, level(4)}},
+        auto mips = out.mips;
+        dispatchCompute(ctx, pipelines.get("xegtao/prefilter_depths", specialization),
+                        {depth, {mips, level(0)}, {mips, level(1)}, {mips, level(2)}, {mips, level(3)}, {mips, level(4)},
+                         out.skyMask},
                         &push, (size.x + 1) / 2, (size.y + 1) / 2);
       });
-  return mips;
+  return out;
 }
 
 XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips) {
@@ -124,9 +126,7 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
   XeGtaoWorking out;
   out.aoTerm = g.createImage("ao_term", {size.x, size.y, aoTermFormat(settings.bent)});
   out.edges = g.createImage("edges", {size.x, size.y, VK_FORMAT_R8_UNORM});
-  auto params = projectionParams(frame.camera().projection, frame.camera().width, frame.camera().height);
-  MainPassPush push{xegtaoConstants(frame.camera(), settings), params.projection22, params.projection32,
-                    params.reversedDepth ? 1u : 0u};
+  shader::XeGtaoConstants push = xegtaoConstants(frame.camera(), settings);
   bool countTaps = frame.wantsDebugView("mip_taps");
   graph::ResourceId taps = countTaps ? addMipTapsBuffer(frame) : graph::kNoResource;
   std::vector<SpecializationValue> specialization{
@@ -134,7 +134,6 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
       spec(shader::kXeGtaoSpecBent, settings.bent), spec(shader::kXeGtaoSpecThin, settings.thinOccluderCompensation > 0.0f),
       spec(shader::kXeGtaoSpecDepth32, settings.depth32),
       {uint32_t(shader::kXeGtaoSpecSampleDistributionPower), std::bit_cast<uint32_t>(settings.sampleDistributionPower)}};
-  auto depth = frame.depth();
   auto normals = frame.viewNormals();
   auto& pipelines = frame.pipelines();
   g.addPass(
@@ -142,7 +141,6 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
       [&](graph::PassBuilder& b) {
         b.read(depthMips, graph::Access::SampledRead);
         b.read(normals, graph::Access::StorageRead);
-        b.read(depth, graph::Access::SampledRead);
         b.write(out.aoTerm);
         b.write(out.edges);
         if (countTaps) {  // atomic adds: a read and a write
@@ -150,20 +148,21 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
           b.write(taps, graph::Access::StorageWrite);
         }
       },
-      [&pipelines, specialization, push, depthMips, normals, depth, out, taps, countTaps, size](graph::PassContext& ctx) {
+      [&pipelines, specialization, push, depthMips, normals, out, taps, countTaps, size](graph::PassContext& ctx) {
         if (countTaps) {
           dispatchCompute(ctx, pipelines.get("xegtao/main_pass_taps", specialization),
-                          {depthMips, normals, depth, out.aoTerm, out.edges, taps}, &push, size.x, size.y);
+                          {depthMips, normals, out.aoTerm, out.edges, taps}, &push, size.x, size.y);
         } else {
           dispatchCompute(ctx, pipelines.get("xegtao/main_pass", specialization),
-                          {depthMips, normals, depth, out.aoTerm, out.edges}, &push, size.x, size.y);
+                          {depthMips, normals, out.aoTerm, out.edges}, &push, size.x, size.y);
         }
       });
   if (countTaps) frame.debugView("mip_taps", taps);
   return out;
 }
 
-graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working) {
+graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working,
+                                   graph::ResourceId skyMask) {
   glm::uvec2 size = frame.size();
   auto& g = frame.graph();
   auto constants = xegtaoConstants(frame.camera(), settings);
@@ -184,11 +183,13 @@ graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& se
         [&](graph::PassBuilder& b) {
           b.read(source, graph::Access::SampledRead);
           b.read(edges, graph::Access::SampledRead);
+          if (last) b.read(skyMask, graph::Access::StorageRead);  // the sky rule
           b.write(target);
         },
-        [&pipelines, shader, specialization, constants, source, edges, target, size](graph::PassContext& ctx) {
-          dispatchCompute(ctx, pipelines.get(shader, specialization), {source, edges, target}, &constants, (size.x + 1) / 2,
-                          size.y);
+        [&pipelines, shader, specialization, constants, source, edges, target, skyMask, last, size](graph::PassContext& ctx) {
+          const auto& pipeline = pipelines.get(shader, specialization);
+          if (last) dispatchCompute(ctx, pipeline, {source, edges, target, skyMask}, &constants, (size.x + 1) / 2, size.y);
+          else dispatchCompute(ctx, pipeline, {source, edges, target}, &constants, (size.x + 1) / 2, size.y);
         });
     source = target;
   }

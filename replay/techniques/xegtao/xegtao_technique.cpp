@@ -12,9 +12,10 @@ namespace {
 
 void addXeGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
   XeGtaoSettings x = xegtaoSettings(settings);
-  auto mips = addXeGtaoPrefilter(frame, x);
+  XeGtaoDepth depth = addXeGtaoPrefilter(frame, x);
+  auto mips = depth.mips;
   auto working = addXeGtaoMainPass(frame, x, mips);
-  auto denoised = addXeGtaoDenoise(frame, x, working);
+  auto denoised = addXeGtaoDenoise(frame, x, working, depth.skyMask);
 
   frame.debugView("linear_depth", mips, {0, 1, 0, 1});
   uint32_t levels = frame.graph().resources().at(mips).desc.mipLevels;
