@@ -1,5 +1,6 @@
 // Format 1.1's geometry: a capture with an OBJ round-trips, version 1 captures read unchanged, and a
 // bad OBJ or a bad "geometry" field is an InputError naming the file and the line (or field).
+#include "capture/content_hash.h"
 #include "test_support.h"
 
 namespace aor::test {
@@ -41,6 +42,12 @@ TEST_F(Geometry, RoundTripsBitIdentically) {
   EXPECT_EQ(g.indices, wrote.indices);
   const auto files = captureFiles(c);
   EXPECT_NE(std::find(files.begin(), files.end(), c.geometry), files.end()) << "outputs must not overwrite the OBJ";
+}
+
+TEST_F(Geometry, IsPartOfTheContentHash) {
+  const std::string before = captureContentSha256(loadCapture(cap));
+  writeObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_NE(captureContentSha256(loadCapture(cap)), before) << "an edited OBJ is another capture";
 }
 
 TEST_F(Geometry, VersionOneCapturesHaveNone) {
