@@ -111,6 +111,16 @@ TEST(Rtao, AccumulationRestartsExactlyOnACameraMove) {
   EXPECT_NE(readText(out / "ao/0003.exr"), readText(out / "ao/0004.exr"));
 }
 
+// `aoreplay graph` compiles a steady-state frame (the second, reading the first's mean) without a device.
+TEST(Rtao, GraphShowsTheTraceReadingLastFramesMean) {
+  fs::path capture = generatedCapture("boxes", "static", 32, 18, 2);
+  auto r = runAoreplay(fmt::format("graph {} --technique rtao --dot {}", capture.string(),
+                                   (scratchDir("rtao-graph") / "graph.dot").string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("rtao_mean.previous"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bvh_nodes"), std::string::npos) << r.output;
+}
+
 TEST(Rtao, AccumulateOffAndMaxFrames) {
   fs::path capture = generatedCapture("boxes", "static", 48, 27, 4);
   fs::path off = scratchDir("rtao-off") / "out";
