@@ -41,8 +41,12 @@ using detail::kMaxImageSide;
 constexpr const char* kFormatName = "aoreplay-capture";
 
 constexpr int kFormatVersion = 1;
+// Version 1.1 adds the optional top-level "geometry"; 1 stays valid, with exactly version 1's rules.
+constexpr double kFormatVersionGeometry = 1.1;
+constexpr const char* kSupportedVersions = "1, 1.1";
+constexpr const char* kGeometryFile = "scene.obj";  // as writeCapture names it
 
-const std::vector<std::string> kTopLevelFields = {"format", "version", "width", "height", "frames", "scene"};
+const std::vector<std::string> kTopLevelFields = {"format", "version", "width", "height", "frames", "scene", "geometry"};
 const std::vector<std::string> kFrameFields = {"gbuffer", "view", "projection", "reference", "cut"};
 const std::vector<std::string> kNormalChannels = {"normal.X", "normal.Y", "normal.Z"};
 const std::vector<std::string> kGBufferChannels = {"depth", "depth2", "normal.X", "normal.Y", "normal.Z"};
@@ -439,15 +443,24 @@ Capture loadCapture(const fs::path& folder) {
   if (!format->is_string() || format->get<std::string>() != kFormatName)
     fail(top, "format", fmt::format("expected \"{}\", got {}", kFormatName, describe(*format)));
   auto version = root.find("version");
-  if (version == root.end()) fail(top, "version", fmt::format("missing; supported versions: {}", kFormatVersion));
-  if (!version->is_number_integer())
-    fail(top, "version",
-         fmt::format("expected an integer, got {}; supported versions: {}", describe(*version), kFormatVersion));
-  if (version->is_number_unsigned() ? version->get<std::uint64_t>() != std::uint64_t(kFormatVersion)
-                                    : version->get<std::int64_t>() != kFormatVersion)
-    fail(top, "version",
-         fmt::format("version {} is not supported; supported versions: {}", version->dump(), kFormatVersion));
+  if (version == root.end()) fail(top, "version", fmt::format("missing; supported versions: {}", kSupportedVersions));
+  const bool version1 = version->is_number_integer() && (version->is_number_unsigned()
+                                                              ? version->get<std::uint64_t>() == std::uint64_t(kFormatVersion)
+                                                              : version->get<std::int64_t>() == kFormatVersion);
+  const bool version11 = version->is_number_float() && version->get<double>() == kFormatVersionGeometry;
+  if (!version->is_number())
+    fail(top, "version", fmt::format("expected a number, got {}; supported versions: {}", describe(*version), kSupportedVersions));
+  if (version->is_number_float() && !version11)
+    fail(top, "version", fmt::format("expected the integer 1 or the number 1.1, got {}; supported versions: {}",
+                                     describe(*version), kSupportedVersions));
+  if (!version1 && !version11)
+    fail(top, "version", fmt::format("version {} is not supported; supported versions: {}", version->dump(), kSupportedVersions));
   checkKnownFields(root, kTopLevelFields, top, "of capture.json");
+  std::optional<fs::path> geometry;
+  if (auto g = root.find("geometry"); g != root.end()) {
+    if (!version11) fail(top, "geometry", "needs \"version\": 1.1 (version 1 captures have no geometry)");
+    geometry = relativePath(*g, "geometry", top);
+  }
 
   const std::int64_t width = positiveInt(root, "width", top);
   const std::int64_t height = positiveInt(root, "height", top);
@@ -566,6 +579,11 @@ Capture loadCapture(const fs::path& folder) {
   }
   capture.hasNormals = first.normals;
   capture.hasDepth2 = first.depth2;
+  if (geometry) {
+    const std::string text = root.at("geometry").get<std::string>();
+    capture.geometry = resolveInFolder(capture.folder, folderCanonical, *geometry, text,
+                                       (folder / *geometry).lexically_normal().string(), "geometry", top);
+  }
   return capture;
 }
 
@@ -584,9 +602,17 @@ std::vector<fs::path> captureFiles(const Capture& capture) {
     files.insert(f.gbuffer);
     if (f.reference) files.insert(*f.reference);
   }
+  if (capture.geometry) files.insert(*capture.geometry);
   std::vector<fs::path> list = {capture.folder / "capture.json"};
   list.insert(list.end(), files.begin(), files.end());
   return list;
+}
+
+CaptureGeometry loadGeometry(const Capture& capture) {
+  if (!capture.geometry)
+    throw InputError((capture.folder / "capture.json").string(), std::nullopt, "geometry",
+                     "the capture has no geometry (format 1.1's \"geometry\": an OBJ of the scene's triangles)");
+  return readObjGeometry(*capture.geometry, detail::displayPath(*capture.geometry));
 }
 
 GBuffer loadGBuffer(const Capture& capture, int frame) {
@@ -681,7 +707,7 @@ void writeTextFile(const fs::path& path, const std::string& text) {
 }  // namespace
 
 void writeCapture(const fs::path& folder, int width, int height, const std::vector<CaptureFrameData>& frames,
-                  const json& scene) {
+                  const json& scene, const CaptureGeometry* geometry) {
   validateForWrite(width, height, frames, scene);
   fs::path target = folder.lexically_normal();
   if (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
@@ -690,12 +716,12 @@ void writeCapture(const fs::path& folder, int width, int height, const std::vect
   // The rules of every output folder (report/output_directory.h): only an earlier capture is
   // replaced, one writer at a time, and the folder is the old capture or the new one at any moment.
   OutputDirectory out(target, ResultKind::Capture);
-  writeCaptureFiles(out.staging(), width, height, frames, scene);
+  writeCaptureFiles(out.staging(), width, height, frames, scene, geometry);
   out.commit();
 }
 
 void writeCaptureFiles(const fs::path& folder, int width, int height, const std::vector<CaptureFrameData>& frames,
-                       const json& scene) {
+                       const json& scene, const CaptureGeometry* geometry) {
   validateForWrite(width, height, frames, scene);
   const fs::path& tmp = folder;
   {
@@ -705,9 +731,16 @@ void writeCaptureFiles(const fs::path& folder, int width, int height, const std:
 
     nlohmann::ordered_json doc;
     doc["format"] = kFormatName;
-    doc["version"] = kFormatVersion;
+    if (geometry)
+      doc["version"] = kFormatVersionGeometry;
+    else
+      doc["version"] = kFormatVersion;
     doc["width"] = width;
     doc["height"] = height;
+    if (geometry) {
+      doc["geometry"] = kGeometryFile;
+      writeTextFile(tmp / kGeometryFile, objText(*geometry, "aoreplay capture geometry: world-space triangles"));
+    }
     auto list = nlohmann::ordered_json::array();
     for (size_t i = 0; i < frames.size(); ++i) {
       const CaptureFrameData& f = frames[i];

@@ -1,5 +1,5 @@
 #pragma once
-// Capture format v1 (captures/FORMAT.md): a folder with capture.json and EXR G-buffers.
+// Capture format 1.1 (captures/FORMAT.md; version 1 files read unchanged): a folder with capture.json and EXR G-buffers.
 // Reading validates everything up front (JSON, matrices, paths, EXR headers of every frame), so a
 // replay never fails half-way through on a bad file. Errors are aor::InputError.
 #include <filesystem>
@@ -12,6 +12,7 @@
 
 #include "capture/input_error.h"
 #include "capture/json_input.h"
+#include "capture/obj_geometry.h"
 
 namespace aor {
 
@@ -43,6 +44,8 @@ struct Capture {
   // Channel layout, identical in every frame (checked when loading).
   bool hasNormals = false;
   bool hasDepth2 = false;
+  // Format 1.1: the scene's world-space triangles (an OBJ inside the folder), when the capture has them.
+  std::optional<std::filesystem::path> geometry;  // absolute, inside the capture folder
 };
 
 // Parses capture.json in `folder` and checks every referenced EXR header.
@@ -61,6 +64,8 @@ std::vector<std::filesystem::path> captureFiles(const Capture& capture);
 GBuffer loadGBuffer(const Capture& capture, int frame);
 // Reference visibility (width*height, in [0,1]); std::nullopt when the frame has none.
 std::optional<std::vector<float>> loadReference(const Capture& capture, int frame);
+// The capture's geometry, read and checked (obj_geometry.h); InputError when it has none.
+CaptureGeometry loadGeometry(const Capture& capture);
 
 // Writing, used by the generator. writeCapture replaces `folder` by the rules of every output
 // folder (report/output_directory.h): files go to a staging folder swapped in only when
@@ -72,10 +77,13 @@ struct CaptureFrameData {
   glm::mat4 projection{1.0f};
   bool cut = false;
 };
+// With `geometry`, the capture is version 1.1 and the triangles are written as scene.obj.
 void writeCapture(const std::filesystem::path& folder, int width, int height,
-                  const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene);
+                  const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene,
+                  const CaptureGeometry* geometry = nullptr);
 // The files alone, into `folder` (empty or new; e.g. an OutputDirectory's staging folder).
 void writeCaptureFiles(const std::filesystem::path& folder, int width, int height,
-                       const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene);
+                       const std::vector<CaptureFrameData>& frames, const nlohmann::json& scene,
+                       const CaptureGeometry* geometry = nullptr);
 
 }  // namespace aor

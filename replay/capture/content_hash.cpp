@@ -59,6 +59,7 @@ std::string captureContentSha256(const Capture& capture) {
     files.insert(fs::relative(frame.gbuffer, capture.folder).generic_string());
     if (frame.reference) files.insert(fs::relative(*frame.reference, capture.folder).generic_string());
   }
+  if (capture.geometry) files.insert(fs::relative(*capture.geometry, capture.folder).generic_string());
   auto context = newSha256();
   for (const auto& name : files) {
     fs::path path = capture.folder / name;

@@ -10,7 +10,7 @@
 namespace aor {
 
 // Lower-case hex SHA-256 over capture.json and every distinct file its frames name (G-buffers and
-// references), in path order, each as its path relative to the capture folder, its size and its
+// references) and its geometry, in path order, each as its path relative to the capture folder, its size and its
 // bytes. Throws std::runtime_error naming a file that cannot be read.
 std::string captureContentSha256(const Capture& capture);
 

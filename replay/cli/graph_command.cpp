@@ -35,8 +35,10 @@ int graphCommand(const GraphArgs& args) {
     FrameBuilder::Setup s;
     s.settings = &settings;
     s.camera = FrameCamera{frame.view, frame.projection, capture.width, capture.height, uint32_t(index)};
-    const auto& previous = capture.frames[size_t(valid ? index - 1 : index)];
-    s.previousCamera = FrameCamera{previous.view, previous.projection, capture.width, capture.height, uint32_t(index)};
+    const int previousIndex = valid ? index - 1 : index;
+    const auto& previous = capture.frames[size_t(previousIndex)];
+    s.previousCamera =
+        FrameCamera{previous.view, previous.projection, capture.width, capture.height, uint32_t(previousIndex)};
     s.capture = {capture.hasNormals, capture.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
     s.historyWanted = historyWanted;
     s.historyValid = valid;

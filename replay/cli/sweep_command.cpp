@@ -89,6 +89,11 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
   row.error = errors.summaryJson();
   row.rmse = row.error["rmse"].get<double>();
   row.ssim = row.error["ssim"].get<double>();
+  for (const auto& frame : result.frames)
+    if (auto spp = frame.techniqueValues.find("accumulated_spp"); spp != frame.techniqueValues.end()) {
+      row.sppMin = row.sppMin == 0 ? spp->second : std::min(row.sppMin, spp->second);
+      row.sppMax = std::max(row.sppMax, spp->second);
+    }
   return row;
 }
 

@@ -75,6 +75,10 @@ nlohmann::json sceneMetadata(const SceneInfo& scene, const GeneratorOptions& o, 
        "cosine-weighted Sobol (0,2) points, per-pixel Cranley-Patterson rotation hashed from (x, y, frame, seed); "
        "rays from p + n*1e-4*max(1, camera distance), tfar = ao_radius, binary visibility"},
       {"sky", "depth = far value (1 standard, 0 reversed), normal (0,0,0), reference 1"},
+      {"geometry_file",
+       "scene.obj: the meshes' triangles as traced, the analytic primitives tessellated with " +
+           std::to_string(kTessellationSegments) + " segments per circle, the sphere " + std::to_string(kSphereSegments) +
+           " x " + std::to_string(kSphereSegments / 2) + " (the floor a 1e4 m square)"},
   };
   if (o.depth2)
     generator["depth2"] = "depth peeling along each pixel's ray: the first surface at least depth2_separation world units "
@@ -120,7 +124,9 @@ void generateCapture(const GeneratorOptions& options, const std::filesystem::pat
     frames.push_back(renderFrame(scene, cameras[i], settings, i));
     if (options.progress) options.progress(i + 1, total);
   }
-  writeCaptureFiles(folder.staging(), options.width, options.height, frames, sceneMetadata(scene.info(), options, radius));
+  const CaptureGeometry geometry = scene.triangles();
+  writeCaptureFiles(folder.staging(), options.width, options.height, frames, sceneMetadata(scene.info(), options, radius),
+                    &geometry);
   folder.commit();
 }
 

@@ -20,6 +20,12 @@
 namespace aor::gen {
 
 inline constexpr double kNearPlane = 0.05;
+// Segments around a circle when the analytic primitives are written as triangles: the chord's sag is
+// r * (1 - cos(pi / 256)) = 7.5e-5 r, below the reference's self-intersection offset at 1 m.
+inline constexpr int kTessellationSegments = 256;
+// The sphere's segments around (and half as many rings): a sag of 5.4e-4 r, and 9216 triangles
+// instead of 65536 (the OBJ is shipped with every sphere capture).
+inline constexpr int kSphereSegments = 96;
 inline constexpr double kFarPlane = 200.0;
 // The sentence stored as scene.reference in capture.json.
 inline constexpr const char* kReferenceDescription =
@@ -67,6 +73,9 @@ class RayScene {
   size_t triangleCount() const;
   // Upper bound of the triangle meshes (excluding the analytic floor); for tests.
   glm::dvec3 meshMax() const;
+  // The scene as world-space triangles, for the capture's geometry (format 1.1): the meshes as
+  // they are and the analytic primitives tessellated (kTessellationSegments around each circle).
+  CaptureGeometry triangles() const;
 
   // Closest hit with t in [tnear, tfar]; direction need not be normalised (t is in its units).
   std::optional<SurfaceHit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,

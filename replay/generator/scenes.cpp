@@ -8,6 +8,7 @@
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <tiny_obj_loader.h>
 
 #include "capture/input_error.h"
@@ -613,6 +614,84 @@ RayScene::RayScene(const std::string& name, const std::filesystem::path& bunnyOb
     buildThin(mesh);
   }
   impl_->commit();
+}
+
+namespace {
+
+// The analytic primitives as triangles (RayScene::triangles): the same surfaces up to the chord sag
+// of kTessellationSegments segments per circle.
+void tessellate(const AnalyticPrim& p, Mesh& mesh) {
+  constexpr int n = kTessellationSegments;
+  const auto onCircle = [&](int k, double radius, double y) {
+    const double a = 2.0 * glm::pi<double>() * double(k % n) / double(n);
+    return dvec3(p.centre.x + radius * std::cos(a), y, p.centre.z + radius * std::sin(a));
+  };
+  switch (p.kind) {
+    case PrimKind::Floor: {
+      const double e = p.extent, y = p.centre.y;
+      const dvec3 c[4] = {{p.centre.x - e, y, p.centre.z - e}, {p.centre.x + e, y, p.centre.z - e},
+                          {p.centre.x + e, y, p.centre.z + e}, {p.centre.x - e, y, p.centre.z + e}};
+      if (p.radius <= 0.0) {
+        mesh.quad(c[0], c[3], c[2], c[1]);
+        return;
+      }
+      // A ring from the hole's rim out to the square: each rim segment joins the point where its
+      // ray leaves the square (a square's boundary point per direction), and the square's corners
+      // are covered by the segments around them.
+      const auto toSquare = [&](int k) {
+        const dvec3 r = onCircle(k, 1.0, y) - dvec3(p.centre.x, y, p.centre.z);
+        const double s = e / std::max(std::abs(r.x), std::abs(r.z));
+        return dvec3(p.centre.x + r.x * s, y, p.centre.z + r.z * s);
+      };
+      for (int k = 0; k < n; ++k) {
+        mesh.quad(onCircle(k, p.radius, y), onCircle(k + 1, p.radius, y), toSquare(k + 1), toSquare(k));
+        for (const dvec3& corner : c) {  // the corner between two segments' outer points
+          const dvec3 a = toSquare(k) - p.centre, b = toSquare(k + 1) - p.centre, q = corner - p.centre;
+          if (a.x * q.z - a.z * q.x > 0.0 && q.x * b.z - q.z * b.x > 0.0) {
+            const uint32_t i0 = mesh.vertex(toSquare(k)), i1 = mesh.vertex(corner), i2 = mesh.vertex(toSquare(k + 1));
+            mesh.triangle(i0, i1, i2);
+          }
+        }
+      }
+      return;
+    }
+    case PrimKind::Disc: {
+      const uint32_t centre = mesh.vertex(p.centre);
+      for (int k = 0; k < n; ++k)
+        mesh.triangle(centre, mesh.vertex(onCircle(k + 1, p.radius, p.centre.y)), mesh.vertex(onCircle(k, p.radius, p.centre.y)));
+      return;
+    }
+    case PrimKind::Cylinder:
+      for (int k = 0; k < n; ++k)
+        mesh.quad(onCircle(k, p.radius, p.centre.y), onCircle(k + 1, p.radius, p.centre.y),
+                  onCircle(k + 1, p.radius, p.centre.y + p.extent), onCircle(k, p.radius, p.centre.y + p.extent));
+      return;
+    case PrimKind::Sphere: {
+      constexpr int around = kSphereSegments, rings = kSphereSegments / 2;
+      const auto at = [&](int ring, int k) {
+        const double theta = glm::pi<double>() * double(ring) / double(rings);
+        const double a = 2.0 * glm::pi<double>() * double(k % around) / double(around);
+        return p.centre + p.radius * dvec3(std::sin(theta) * std::cos(a), std::cos(theta), std::sin(theta) * std::sin(a));
+      };
+      for (int ring = 0; ring < rings; ++ring)
+        for (int k = 0; k < around; ++k) mesh.quad(at(ring, k), at(ring, k + 1), at(ring + 1, k + 1), at(ring + 1, k));
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+CaptureGeometry RayScene::triangles() const {
+  Mesh all;
+  // Without Embree's padding float (commit()).
+  all.vertices.assign(impl_->mesh.vertices.begin(), impl_->mesh.vertices.begin() + impl_->mesh.vertices.size() / 3 * 3);
+  all.indices = impl_->mesh.indices;
+  for (const auto& p : impl_->prims) tessellate(p, all);
+  CaptureGeometry g;
+  g.positions = std::move(all.vertices);
+  g.indices = std::move(all.indices);
+  return g;
 }
 
 RayScene::~RayScene() = default;

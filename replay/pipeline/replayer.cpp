@@ -153,6 +153,7 @@ struct FrameGraphRuns {
   double recordMs = 0;  // building, compiling and recording the graph
   double gpuMs = 0;     // from submission to the fence
   std::vector<DebugReadback> debug;
+  std::map<std::string, double> values;
   VkFormat outputFormat = VK_FORMAT_UNDEFINED;
   OutputLayout outputLayout;
 
@@ -185,6 +186,7 @@ FrameGraphRuns runFrameGraph(const FrameBuilder::Setup& setup, PipelineCache& pi
       runs.passes[i].durationsMs.push_back(times[i].durationMs);
     }
     runs.debug = frameGraph.debug;
+    runs.values = frameGraph.values;
     runs.outputFormat = frameGraph.outputFormat;
     runs.outputLayout = frameGraph.outputLayout;
     if (!describeGraph || run + 1 < warmup + repeat) continue;
@@ -311,6 +313,7 @@ class Replay {
     setupStart_ = Clock::now();  // the origin of every start time in the result
     const Technique& technique = settings_.technique();
     if (technique.prepare) state_ = technique.prepare(ReplaySetup{capture_, settings_, &vk_});
+    if (state_) result_.techniqueState = state_->reportValues();
     layout_ = {capture_.hasNormals, capture_.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
     FrameGraph dry = buildFrameGraph(pipelines_, setupFor(begin_, {}, false), {});  // the output's format, never run
     outputTexelBytes_ = graph::bytesPerPixel(dry.outputFormat);
@@ -424,6 +427,7 @@ class Replay {
     auto runs = runFrameGraph(setup, pipelines_, resources_, executor_, frameBuffers(index), options_.warmup,
                               options_.repeat, lastFrame);
     record.passes = std::move(runs.passes);
+    record.techniqueValues = runs.values;
     record.recordMs = runs.recordMs;
     record.gpuWallMs = runs.gpuMs;
     if (lastFrame) {

@@ -4,6 +4,7 @@
 // and decide history validity for the next frame. Outputs go to a FrameSink. Which passes run is
 // the technique's (techniques/technique.h); this loop is the same for every technique.
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -68,6 +69,7 @@ struct FrameRecord {
   int64_t invalidDepthPixels = 0;    // NaN, Inf or outside [0,1]
   int64_t invalidNormalPixels = 0;   // NaN or Inf in a normal component (uploaded as is, ignored by GTAO)
   std::vector<DebugCounters> debugCounters;  // debug buffers the run asked for (report.json frames[i].debug)
+  std::map<std::string, double> techniqueValues;  // FrameBuilder::reportValue (report.json frames[i].technique)
 };
 
 struct FrameOutput {
@@ -98,6 +100,7 @@ struct ReplayResult {
   uint64_t peakGpuBytes = 0;                // resources of the compiled graph, aliasing included
   uint64_t unaliasedGpuBytes = 0;
   nlohmann::json resources;                 // graphResourcesJson() of the last frame's graph
+  std::vector<std::pair<std::string, double>> techniqueState;  // TechniqueState::reportValues
   double setupMs = 0;  // staging memory, pipelines and the first frame's images; the first decode overlaps it
   double wallMs = 0;   // from the end of the set-up to the end of the last frame's sink
 };

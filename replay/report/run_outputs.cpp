@@ -136,11 +136,17 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
       for (const auto& c : f.debugCounters) debug[c.name] = c.values;
       frame["debug"] = debug;
     }
+    if (!f.techniqueValues.empty()) frame["technique"] = f.techniqueValues;
     frame["invalid_depth_pixels"] = f.invalidDepthPixels;
     frame["invalid_normal_pixels"] = f.invalidNormalPixels;
     frameList.push_back(frame);
   }
   report["frames"] = frameList;
+  if (!result.techniqueState.empty()) {
+    nlohmann::json state = nlohmann::json::object();
+    for (const auto& [key, value] : result.techniqueState) state[key] = value;
+    report["technique_state"] = state;
+  }
   report["setup_ms"] = result.setupMs;
   report["wall_ms"] = result.wallMs;
   report["replay_fps"] = result.wallMs > 0 ? 1000.0 * double(result.frames.size()) / result.wallMs : 0.0;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "capture/input_error.h"
 #include "report/svg_plot.h"
@@ -145,6 +146,7 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
     list.push_back({{"configuration", row.config.name}, {"settings", row.config.settings.toJson()},
                     {"gpu_ms_median", passes}, {"gpu_ms_total", row.totalMs}, {"rmse", row.rmse},
                     {"ssim", row.ssim}, {"error", row.error}, {"pareto", row.pareto}});
+    if (row.sppMax > 0) list.back()["accumulated_spp"] = {row.sppMin, row.sppMax};
   }
   out["rows"] = list;
   return out;
@@ -171,6 +173,11 @@ std::string sweepCsv(const std::vector<SweepRow>& rows) {
   return csv;
 }
 
+std::string SweepRow::samplesLabel() const {
+  if (sppMax <= 0) return "";
+  return sppMin == sppMax ? fmt::format("{:g} spp", sppMax) : fmt::format("{:g}-{:g} spp", sppMin, sppMax);
+}
+
 std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
   // Points are numbered (names of grid configurations are long and collide); the key under the
   // plot and each point's hover text give the configuration.
@@ -178,15 +185,19 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
   all.lines = false;
   std::vector<const SweepRow*> front;
   PlotOptions options;
+  std::vector<std::string> sppNotes;
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRow& row = rows[i];
     all.x.push_back(row.totalMs);
     all.y.push_back(row.rmse);
-    all.labels.push_back(std::to_string(i + 1));
-    all.tooltips.push_back(fmt::format("{}: {}, {:.4g} ms, RMSE {:.5g}{}", i + 1, row.config.name, row.totalMs, row.rmse,
-                                       row.pareto ? " (Pareto-optimal)" : ""));
+    // A ray-traced technique's cost is its samples per pixel: they go with its point and the x axis.
+    std::string spp = row.samplesLabel();
+    all.labels.push_back(spp.empty() ? std::to_string(i + 1) : fmt::format("{} ({})", i + 1, spp));
+    all.tooltips.push_back(fmt::format("{}: {}{}, {:.4g} ms, RMSE {:.5g}{}", i + 1, row.config.name, spp.empty() ? "" : ", " + spp,
+                                       row.totalMs, row.rmse, row.pareto ? " (Pareto-optimal)" : ""));
     all.highlighted.push_back(row.pareto);
-    options.key.push_back(fmt::format("{} = {}", i + 1, row.config.name));
+    options.key.push_back(fmt::format("{} = {}{}", i + 1, row.config.name, spp.empty() ? "" : " (" + spp + " accumulated)"));
+    if (!spp.empty()) sppNotes.push_back(fmt::format("{}: {}", i + 1, spp));
     if (row.pareto) front.push_back(&row);
   }
   std::sort(front.begin(), front.end(), [](const SweepRow* a, const SweepRow* b) { return a->totalMs < b->totalMs; });
@@ -198,6 +209,7 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
   }
   options.title = fmt::format("{}: RMSE vs {} reference against GPU time", info.capture, info.referenceKind);
   options.xLabel = "GPU time per frame (ms, sum of pass medians)";
+  if (!sppNotes.empty()) options.xLabel += fmt::format("; samples per pixel {}", fmt::join(sppNotes, ", "));
   options.yLabel = "RMSE (visibility, 0-1; sky masked)";
   options.logX = true;
   return svgPlot({pareto, all}, options);

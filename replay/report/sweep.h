@@ -45,6 +45,10 @@ struct SweepRow {
   nlohmann::json error;                                // ErrorAnalysis::summaryJson()
   double rmse = 0, ssim = 0;
   bool pareto = false;
+  // Techniques that accumulate samples over frames (frames[i].technique.accumulated_spp, rtao):
+  // the samples per pixel its frames reached, least and most; 0 for the others.
+  double sppMin = 0, sppMax = 0;
+  std::string samplesLabel() const;  // "4-64 spp", or "" for a technique without them
 };
 
 // A row is Pareto-optimal when no other row is at least as fast and at least as accurate (RMSE)

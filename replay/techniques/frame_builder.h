@@ -110,6 +110,11 @@ class FrameBuilder {
   void debugView(const std::string& name, graph::ResourceId resource, graph::Subresources range = {0, 1, 0, 1});
   const std::vector<DebugReadback>& debugReadbacks() const { return debug_; }
 
+  // A number of this frame's that report.json records as `frames[i].technique.KEY` (an
+  // accumulation's sample count).
+  void reportValue(const std::string& key, double value) { values_[key] = value; }
+  const std::map<std::string, double>& reportValues() const { return values_; }
+
   template <typename T>
   T& state() {
     auto* s = dynamic_cast<T*>(setup_.state);
@@ -135,6 +140,7 @@ class FrameBuilder {
   OutputLayout outputLayout_;
   std::map<std::string, std::string> notes_;
   std::vector<DebugReadback> debug_;
+  std::map<std::string, double> values_;
 };
 
 }  // namespace aor

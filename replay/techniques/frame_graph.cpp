@@ -31,6 +31,7 @@ FrameGraph buildFrameGraph(PipelineCache& pipelines, const FrameBuilder::Setup& 
   out.outputLayout = frame.outputLayout();
   out.notes = frame.notes();
   out.debug = frame.debugReadbacks();
+  out.values = frame.reportValues();
   return out;
 }
 

@@ -24,6 +24,7 @@ struct FrameGraph {
   OutputLayout outputLayout;
   std::map<std::string, std::string> notes;  // pass name -> the setting or input that made it unneeded
   std::vector<DebugReadback> debug;
+  std::map<std::string, double> values;  // FrameBuilder::reportValue
 };
 
 // Whether the technique keeps history under `settings` in a replay of `frames` frames.

@@ -51,6 +51,8 @@ struct HistoryNeeds {
 // made once by Technique::prepare, reached from each frame through FrameBuilder::state().
 struct TechniqueState {
   virtual ~TechniqueState() = default;
+  // What report.json's `technique_state` records of it (a BVH's size and build time), by key.
+  virtual std::vector<std::pair<std::string, double>> reportValues() const { return {}; }
 };
 
 // What a technique's prepare() sees: the capture and settings of the replay, and the device when

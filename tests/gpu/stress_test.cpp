@@ -129,6 +129,26 @@ GBuffer stressGBuffer(const StressScene& s, const glm::mat4& view, const glm::ma
   return g;
 }
 
+// The scene as triangles (format 1.1's geometry), for ray-traced techniques: the floor and the wall
+// as quads 1e4 wide around the origin (the G-buffer's are unbounded).
+CaptureGeometry stressGeometry(const StressScene& s) {
+  const double e = 1e4;
+  glm::dvec3 o = s.origin;
+  std::vector<glm::dvec3> corners = {o + glm::dvec3(-e, 0, -e), o + glm::dvec3(e, 0, -e), o + glm::dvec3(e, 0, e),
+                                     o + glm::dvec3(-e, 0, e)};
+  if (s.wallDistance > 0.0) {
+    double z = -s.wallDistance;
+    for (glm::dvec3 c : {glm::dvec3(-e, 0, z), glm::dvec3(e, 0, z), glm::dvec3(e, s.wallHeight, z), glm::dvec3(-e, s.wallHeight, z)})
+      corners.push_back(o + c);
+  }
+  CaptureGeometry g;
+  for (const auto& c : corners)
+    for (int k = 0; k < 3; ++k) g.positions.push_back(float(c[k]));
+  for (uint32_t quad = 0; quad < corners.size() / 4; ++quad)
+    for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) g.indices.push_back(4 * quad + k);
+  return g;
+}
+
 fs::path stressCapture(const std::string& name, const StressScene& s,
                        const std::function<void(int, GBuffer&)>& edit = nullptr) {
   glm::mat4 view = stressView(s), projection = stressProjection(s);
@@ -142,7 +162,8 @@ fs::path stressCapture(const std::string& name, const StressScene& s,
     frames.push_back(std::move(f));
   }
   fs::path dir = scratchDir("stress-" + name) / "capture";
-  writeCapture(dir, s.width, s.height, frames, {{"ao_radius", s.radius}});
+  CaptureGeometry geometry = stressGeometry(s);
+  writeCapture(dir, s.width, s.height, frames, {{"ao_radius", s.radius}}, &geometry);
   return dir;
 }
 

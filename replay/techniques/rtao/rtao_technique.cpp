@@ -1,0 +1,277 @@
+// Seed 003: ray-traced AO from the G-buffer, accumulated over frames (the nvpro-samples Vulkan
+// ray-tracing tutorial's "G-Buffer and Ambient Occlusion" extension), as a technique module. Its
+// rays traverse a BVH of the capture's geometry (format 1.1) in a compute shader, so it runs on
+// every Vulkan device. Seed 003 point by point: README.md in this folder.
+#include <chrono>
+#include <cstring>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "blocks/blocks.h"
+#include "blocks/camera.h"
+#include "capture/capture.h"
+#include "capture/input_error.h"
+#include "graph/pass_context.h"
+#include "techniques/frame_builder.h"
+#include "techniques/registry.h"
+#include "techniques/rtao/rtao_bvh.h"
+#include "vk/context.h"
+#include "vk/resources.h"
+#include "vk/vk_check.h"
+
+namespace aor {
+namespace {
+
+constexpr const char* kSamples = "samples";
+constexpr const char* kPower = "power";
+constexpr const char* kDistanceBased = "distance_based";
+constexpr const char* kAccumulate = "accumulate";
+constexpr const char* kMaxFrames = "max_frames";
+constexpr const char* kTraversal = "traversal";
+constexpr const char* kNormalOffset = "normal_offset";
+constexpr const char* kMean = "rtao_mean";
+
+enum class Traversal { Auto, Compute, RayQuery };
+const std::vector<std::string> kRayQueryExtensions = {"VK_KHR_ray_query", "VK_KHR_acceleration_structure"};
+
+// The BVH on the device (or only its sizes, for `aoreplay graph`), and the accumulation's length at
+// each frame replayed so far, for the next frame's weight and the report.
+struct RtaoState : TechniqueState {
+  VulkanContext* vk = nullptr;
+  GpuBuffer nodes, triangles;
+  uint64_t nodeBytes = 0, triangleBytes = 0;
+  size_t nodeCount = 0, triangleCount = 0;
+  uint32_t depth = 0;
+  double buildMs = 0;
+  std::map<uint32_t, uint32_t> accumulatedFrames;  // capture frame index -> frames in its mean
+
+  ~RtaoState() override {
+    if (!vk) return;
+    destroyBuffer(*vk, nodes);
+    destroyBuffer(*vk, triangles);
+  }
+  std::vector<std::pair<std::string, double>> reportValues() const override {
+    return {{"bvh_nodes", double(nodeCount)},       {"bvh_triangles", double(triangleCount)},
+            {"bvh_depth", double(depth)},           {"bvh_bytes", double(nodeBytes + triangleBytes)},
+            {"bvh_build_ms", buildMs}};
+  }
+};
+
+// A device-local storage buffer holding `bytes`, filled through a staging copy that has finished
+// when this returns (the graph imports it as last written by that transfer).
+GpuBuffer uploadStorageBuffer(VulkanContext& vk, const void* data, uint64_t bytes) {
+  GpuBuffer staging = createHostBuffer(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(staging.mapped, data, bytes);
+  GpuBuffer buffer = createDeviceBuffer(vk, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = vk.commandPool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateCommandBuffers(vk.device, &alloc, &cmd));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  VkBufferCopy region{0, 0, bytes};
+  vkCmdCopyBuffer(cmd, staging.buffer, buffer.buffer, 1, &region);
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateFence(vk.device, &fenceInfo, nullptr, &fence));
+  submitAndWait(vk, cmd, fence);
+  vkDestroyFence(vk.device, fence, nullptr);
+  vkFreeCommandBuffers(vk.device, vk.commandPool, 1, &cmd);
+  destroyBuffer(vk, staging);
+  return buffer;
+}
+
+constexpr graph::ImageState kUploaded{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+
+std::unique_ptr<TechniqueState> prepareRtao(const ReplaySetup& setup) {
+  auto state = std::make_unique<RtaoState>();
+  CaptureGeometry geometry = loadGeometry(setup.capture);  // InputError naming the OBJ's line
+  auto start = std::chrono::steady_clock::now();
+  RtaoBvh bvh = buildRtaoBvh(geometry);
+  state->buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  state->nodeCount = bvh.nodes.size();
+  state->triangleCount = bvh.triangles.size();
+  state->depth = bvh.depth;
+  state->nodeBytes = bvh.nodes.size() * sizeof(bvh.nodes[0]);
+  state->triangleBytes = bvh.triangles.size() * sizeof(bvh.triangles[0]);
+  if (setup.vk) {
+    state->vk = setup.vk;
+    state->nodes = uploadStorageBuffer(*setup.vk, bvh.nodes.data(), state->nodeBytes);
+    state->triangles = uploadStorageBuffer(*setup.vk, bvh.triangles.data(), state->triangleBytes);
+  }
+  return state;
+}
+
+void checkRtaoCapture(const Settings&, const Capture& capture) {
+  if (!capture.geometry)
+    throw InputError((capture.folder / "capture.json").string(), std::nullopt, "geometry",
+                     "--technique rtao traces rays against the scene's triangles and this capture has none: it needs "
+                     "format 1.1's \"geometry\" (an OBJ, captures/FORMAT.md; `aoreplay capture` writes one)");
+}
+
+std::vector<std::string> missingRtaoExtensions(const Settings& settings, const DeviceInfo& device) {
+  if (Traversal(settings.i(kTraversal)) != Traversal::RayQuery) return {};
+  std::vector<std::string> missing;
+  for (const auto& e : kRayQueryExtensions)
+    if (!device.hasExtension(e)) missing.push_back(e);
+  if (missing.empty())
+    throw InputError("", std::nullopt, kTraversal,
+                     "traversal=rayquery is not implemented yet (the device has the extensions); use traversal=compute");
+  return missing;
+}
+
+// The seed's updateFrame: any change of the camera matrix (or of the projection, the seed's fov)
+// restarts the accumulation, beyond the host's history rules (cut, size, settings, jumps).
+bool sameCamera(const FrameCamera& a, const FrameCamera& b) {
+  return std::memcmp(&a.view, &b.view, sizeof(a.view)) == 0 && std::memcmp(&a.projection, &b.projection, sizeof(a.projection)) == 0;
+}
+
+struct Accumulation {
+  bool continues = false;  // last frame's mean is read
+  uint32_t frames = 1;     // frames in this frame's mean
+  bool hold = false;       // max_frames reached: the mean is kept as it is
+};
+
+Accumulation accumulationOf(FrameBuilder& frame, const Settings& settings, RtaoState& state) {
+  Accumulation a;
+  a.continues = settings.b(kAccumulate) && frame.historyWanted() && frame.historyValid() &&
+                sameCamera(frame.camera(), frame.previousCamera());
+  if (a.continues) {
+    auto previous = state.accumulatedFrames.find(frame.previousCamera().frameIndex);
+    if (previous == state.accumulatedFrames.end()) throw std::logic_error("rtao: the previous frame's accumulation is unknown");
+    uint32_t cap = uint32_t(settings.i(kMaxFrames));
+    a.hold = cap > 0 && previous->second >= cap;
+    a.frames = a.hold ? previous->second : previous->second + 1;
+  }
+  state.accumulatedFrames[frame.camera().frameIndex] = a.frames;
+  return a;
+}
+
+shader::RtaoConstants traceConstants(const FrameBuilder& frame, const Settings& settings, const Accumulation& a) {
+  const auto& cam = frame.camera();
+  auto params = projectionParams(cam.projection, cam.width, cam.height);
+  glm::mat4 viewToWorld = glm::inverse(cam.view);
+  shader::RtaoConstants c{};
+  c.viewToWorld0 = glm::vec4(viewToWorld[0][0], viewToWorld[1][0], viewToWorld[2][0], viewToWorld[3][0]);
+  c.viewToWorld1 = glm::vec4(viewToWorld[0][1], viewToWorld[1][1], viewToWorld[2][1], viewToWorld[3][1]);
+  c.viewToWorld2 = glm::vec4(viewToWorld[0][2], viewToWorld[1][2], viewToWorld[2][2], viewToWorld[3][2]);
+  c.ndcToViewMul = params.ndcToViewMul;
+  c.ndcToViewAdd = params.ndcToViewAdd;
+  c.invSize = {1.0f / float(cam.width), 1.0f / float(cam.height)};
+  c.size = {cam.width, cam.height};
+  c.radius = settings.f(kRadiusKey);
+  c.power = settings.f(kPower);
+  c.normalOffset = settings.f(kNormalOffset);
+  c.newWeight = 1.0f / float(a.frames);
+  c.frameNumber = a.frames - 1;
+  c.hold = a.hold ? 1u : 0u;
+  return c;
+}
+
+void addRtaoPasses(FrameBuilder& frame, const Settings& settings) {
+  auto& state = frame.state<RtaoState>();
+  Accumulation a = accumulationOf(frame, settings, state);
+  auto& g = frame.graph();
+  graph::ResourceId nodes = state.vk ? g.importExternalBuffer("bvh_nodes", {state.nodeBytes}, state.nodes, kUploaded)
+                                     : g.importBuffer("bvh_nodes", {state.nodeBytes});
+  graph::ResourceId triangles = state.vk
+                                    ? g.importExternalBuffer("bvh_triangles", {state.triangleBytes}, state.triangles, kUploaded)
+                                    : g.importBuffer("bvh_triangles", {state.triangleBytes});
+  auto size = frame.size();
+  graph::ImageDesc meanDesc{size.x, size.y, VK_FORMAT_R32_SFLOAT};
+  graph::ResourceId previous = graph::kNoResource, mean;
+  if (frame.historyWanted()) {
+    auto history = frame.history(kMean, meanDesc);
+    mean = history.current;
+    if (a.continues) previous = history.previous;
+  } else {
+    mean = g.createImage(kMean, meanDesc);
+  }
+  bool worldNormals = frame.worldNormals() != graph::kNoResource;
+  graph::ResourceId normals = worldNormals ? frame.worldNormals() : frame.reconstructedNormals();
+  graph::ResourceId distance = frame.linearDistance();
+  std::vector<SpecializationValue> specialization{{uint32_t(shader::kRtaoSpecSamples), uint32_t(settings.i(kSamples))},
+                                                  {uint32_t(shader::kRtaoSpecDistanceBased), settings.b(kDistanceBased) ? 1u : 0u},
+                                                  {uint32_t(shader::kRtaoSpecWorldNormals), worldNormals ? 1u : 0u}};
+  shader::RtaoConstants c = traceConstants(frame, settings, a);
+  auto& pipelines = frame.pipelines();
+  g.addPass(
+      "rtao",
+      [&](graph::PassBuilder& b) {
+        b.read(distance, graph::Access::StorageRead);
+        b.read(normals, graph::Access::StorageRead);
+        b.read(nodes, graph::Access::StorageRead);
+        b.read(triangles, graph::Access::StorageRead);
+        if (previous != graph::kNoResource) b.read(previous, graph::Access::StorageRead);
+        b.write(mean);
+      },
+      [&pipelines, specialization, c, distance, normals, nodes, triangles, previous, mean](graph::PassContext& ctx) {
+        if (previous != graph::kNoResource)
+          dispatchCompute(ctx, pipelines.get("rtao/rtao_accumulate", specialization),
+                          {distance, normals, nodes, triangles, previous, mean}, &c, uint32_t(c.size.x), uint32_t(c.size.y));
+        else
+          dispatchCompute(ctx, pipelines.get("rtao/rtao_first", specialization), {distance, normals, nodes, triangles, mean},
+                          &c, uint32_t(c.size.x), uint32_t(c.size.y));
+      });
+  frame.reportValue("accumulated_frames", a.frames);
+  frame.reportValue("accumulated_spp", double(a.frames) * settings.i(kSamples));
+  frame.setOutput(mean, OutputLayout::visibilityOnly());
+}
+
+HistoryNeeds rtaoHistory(const Settings& settings) {
+  bool keeps = settings.b(kAccumulate);
+  return {keeps, false, keeps ? "" : "accumulate=0"};
+}
+
+std::optional<Settings> rtaoWithoutAccumulation(const Settings& settings) {
+  Settings without = settings;
+  without.set(kAccumulate, 0);
+  return without;
+}
+
+Technique makeRtao() {
+  Technique t;
+  t.name = "rtao";
+  t.seed = "003 ray-traced AO from the G-buffer, accumulated over frames";
+  t.summary = "cosine-weighted AO rays from the depth buffer's surfaces against the capture's geometry (a BVH "
+              "traversed in a compute shader), running mean over frames while the camera is still";
+  t.parameters = {
+      radiusParameter(2.0),
+      intParameter(kSamples, 4, 1, 1024, "rays per pixel per frame (AoControl::rtao_samples)"),
+      floatParameter(kPower, 2.0, 0.0, 16.0, "exponent of each frame's visibility (AoControl::rtao_power; 1 = none)"),
+      boolParameter(kDistanceBased, true,
+                    "1: a hit occludes by 1 - t/radius (closest hit); 0: any hit within the radius occludes fully "
+                    "(the reference's definition)"),
+      boolParameter(kAccumulate, true,
+                    "running mean over frames, restarted on any camera change, a cut, a size or settings change"),
+      intParameter(kMaxFrames, 0, 0, 1000000, "frames a mean accumulates at most, then it is kept (0 = no cap)"),
+      enumParameter(kTraversal, {"auto", "compute", "rayquery"}, int(Traversal::Auto),
+                    "BVH traversal: compute (a compute-shader BVH, every device), rayquery (VK_KHR_ray_query; exit 3 "
+                    "without it; not implemented yet), auto (compute)"),
+      floatParameter(kNormalOffset, 1e-4, 0.0, 0.1,
+                     "ray origins move this many world units per unit of view distance (at least 1) along the normal "
+                     "before OffsetRay: the depth buffer's position is only within its precision of the surface"),
+  };
+  t.inputs.normals = InputUse::Optional;
+  t.addPasses = addRtaoPasses;
+  t.history = rtaoHistory;
+  t.withoutHistory = rtaoWithoutAccumulation;
+  t.checkCapture = checkRtaoCapture;
+  t.missingDeviceExtensions = missingRtaoExtensions;
+  t.prepare = prepareRtao;
+  return t;
+}
+
+}  // namespace
+
+const Technique& rtaoTechnique() {
+  static const Technique t = makeRtao();
+  return t;
+}
+
+}  // namespace aor

@@ -1,0 +1,5 @@
+#version 450
+// Seed 003's trace pass on a frame that starts an accumulation (rtao_body.glsl).
+#extension GL_GOOGLE_include_directive : require
+#define RTAO_ACCUMULATE 0
+#include "rtao_body.glsl"
