@@ -138,7 +138,10 @@ class Harness {
     FrameBuilder::Setup setup;
     setup.settings = &s;
     const auto& frame = source_.frames.front();
-    setup.camera = setup.previousCamera = FrameCamera{frame.view, frame.projection, config.width, config.height, 1};
+    // Frame 1 of a still camera, after frame 0 (built first, as a replay would, so that a technique
+    // that keeps state per frame, rtao's accumulation, knows frame 0).
+    setup.camera = FrameCamera{frame.view, frame.projection, config.width, config.height, 1};
+    setup.previousCamera = FrameCamera{frame.view, frame.projection, config.width, config.height, 0};
     setup.capture = {source_.hasNormals, source_.hasDepth2 && config.technique->inputs.depth2 != InputUse::Unused};
     setup.historyWanted = setup.historyValid = historyNeedsOf(s, 2).keeps;
     std::unique_ptr<TechniqueState> state;
@@ -146,6 +149,13 @@ class Harness {
     setup.state = state.get();
     VulkanContext noDevice;
     PipelineCache pipelines(noDevice);
+    if (setup.historyValid) {
+      FrameBuilder::Setup first = setup;
+      first.camera = first.previousCamera = setup.previousCamera;
+      first.historyValid = false;
+      auto firstGraph = buildFrameGraph(pipelines, first, {});
+      setup.historyStates = historyStatesAfter(firstGraph.graph, firstGraph.graph.compile());
+    }
     auto frameGraph = buildFrameGraph(pipelines, setup, {});
     auto compiled = frameGraph.graph.compile();
     std::vector<std::string> names;

@@ -38,7 +38,10 @@ Capture resampledCapture(const fs::path& source, int width, int height, int fram
   fs::path staging = folder;
   staging += ".partial";
   fs::remove_all(staging);
-  writeCapture(staging, width, height, data, original.scene);
+  // The geometry is world space, the same at every size: carried over for the techniques that trace it.
+  std::optional<CaptureGeometry> geometry;
+  if (original.geometry) geometry = loadGeometry(original);
+  writeCapture(staging, width, height, data, original.scene, geometry ? &*geometry : nullptr);
   fs::rename(staging, folder);  // a half-written cache never looks complete
   return loadCapture(folder);
 }
