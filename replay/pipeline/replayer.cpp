@@ -316,6 +316,7 @@ class Replay {
     if (state_) result_.techniqueState = state_->reportValues();
     layout_ = {capture_.hasNormals, capture_.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
     FrameGraph dry = buildFrameGraph(pipelines_, setupFor(begin_, {}, false), {});  // the output's format, never run
+    checkDebugViewsWritten(dry);
     outputTexelBytes_ = graph::bytesPerPixel(dry.outputFormat);
     outputDesc_ = dry.graph.resources()[dry.output].desc;
     int slots = 2;
@@ -333,6 +334,18 @@ class Replay {
   }
 
  private:
+  // A view the technique declares may still not exist with these settings (cacao's importance map
+  // below `highest`, a MIP level a small frame does not have): say so instead of writing nothing.
+  void checkDebugViewsWritten(const FrameGraph& dry) const {
+    for (const auto& view : options_.debugViews) {
+      bool written = std::any_of(dry.debug.begin(), dry.debug.end(), [&](const DebugReadback& d) { return d.name == view; });
+      if (!written)
+        throw InputError("", std::nullopt, "--debug",
+                         fmt::format("technique {} writes no debug view '{}' with these settings ({})",
+                                     settings_.technique().name, view, settings_.toJson().dump()));
+    }
+  }
+
   FrameCamera frameCamera(int index) const {
     const auto& frame = capture_.frames[size_t(index)];
     return FrameCamera{frame.view, frame.projection, capture_.width, capture_.height, uint32_t(index)};

@@ -169,6 +169,17 @@ TEST(Cacao, GenerateNormalsAndNoBlurChangeOnlyTheirRows) {
   EXPECT_EQ(cacaoPassesOf(json::parse(readText(out / "report.json"))["passes"]), expected);
 }
 
+// The importance map exists only at highest: asking for it at high is an error, not an empty folder.
+TEST(Cacao, ADebugViewTheLevelDoesNotWriteIsAnError) {
+  fs::path out = scratchDir("cacao-missing-view") / "out";
+  auto r = runAoreplay(fmt::format("run {} --technique cacao --preset high --frames 0:1 --debug importance_map --out {}",
+                                   shipped("boxes-static").string(), out.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("writes no debug view 'importance_map'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"quality\":\"high\""), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "report.json"));
+}
+
 TEST(Cacao, GraphDrawsEveryConfiguration) {
   for (const auto& c : everyConfiguration()) {
     fs::path dot = scratchDir("cacao-graph") / "graph.dot";
