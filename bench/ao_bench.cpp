@@ -149,14 +149,10 @@ class Harness {
     setup.state = state.get();
     VulkanContext noDevice;
     PipelineCache pipelines(noDevice);
-    if (setup.historyValid) {
-      FrameBuilder::Setup first = setup;
-      first.camera = first.previousCamera = setup.previousCamera;
-      first.historyValid = false;
-      auto firstGraph = buildFrameGraph(pipelines, first, {});
-      setup.historyStates = historyStatesAfter(firstGraph.graph, firstGraph.graph.compile());
-    }
-    auto frameGraph = buildFrameGraph(pipelines, setup, {});
+    FrameBuilder::Setup first = setup;
+    first.camera = first.previousCamera = setup.previousCamera;
+    first.historyValid = false;
+    auto frameGraph = buildSteadyStateFrameGraph(pipelines, first, setup);
     auto compiled = frameGraph.graph.compile();
     std::vector<std::string> names;
     for (const auto& p : compiled.passes) names.push_back(frameGraph.graph.passes()[p.pass].name);

@@ -30,7 +30,7 @@ int graphCommand(const GraphArgs& args) {
   auto [begin, end] = args.settings.frameRange(capture);
   const Technique& technique = settings.technique();
   bool historyWanted = historyNeedsOf(settings, end - begin).keeps;
-  auto setupFor = [&](int index, bool valid, HistoryStates history) {
+  auto setupFor = [&](int index, bool valid) {
     const auto& frame = capture.frames[size_t(index)];
     FrameBuilder::Setup s;
     s.settings = &settings;
@@ -42,7 +42,6 @@ int graphCommand(const GraphArgs& args) {
     s.capture = {capture.hasNormals, capture.hasDepth2 && technique.inputs.depth2 != InputUse::Unused};
     s.historyWanted = historyWanted;
     s.historyValid = valid;
-    s.historyStates = std::move(history);
     s.debugViews = {args.settings.debugViews.begin(), args.settings.debugViews.end()};
     return s;
   };
@@ -53,18 +52,12 @@ int graphCommand(const GraphArgs& args) {
   PipelineCache pipelines(noDevice);
   // A steady-state frame: the second of the range when there is one, with history valid and its
   // history images in the states the first frame left them in (as in a replay).
-  int index = begin;
-  HistoryStates history;
-  if (historyWanted) {
-    auto first = setupFor(begin, false, {});
-    first.state = state.get();
-    auto firstGraph = buildFrameGraph(pipelines, first, {});
-    history = historyStatesAfter(firstGraph.graph, firstGraph.graph.compile());
-    index = begin + 1;
-  }
-  auto setup = setupFor(index, historyWanted, history);
+  const int index = historyWanted ? begin + 1 : begin;
+  auto first = setupFor(begin, false);
+  first.state = state.get();
+  auto setup = setupFor(index, historyWanted);
   setup.state = state.get();
-  auto frameGraph = buildFrameGraph(pipelines, setup, {});
+  auto frameGraph = buildSteadyStateFrameGraph(pipelines, first, setup);
   auto compiled = frameGraph.graph.compile();
 
   // With --dot - the graph goes to standard output, so the description goes to standard error.

@@ -35,6 +35,14 @@ FrameGraph buildFrameGraph(PipelineCache& pipelines, const FrameBuilder::Setup& 
   return out;
 }
 
+FrameGraph buildSteadyStateFrameGraph(PipelineCache& pipelines, const FrameBuilder::Setup& first, FrameBuilder::Setup steady) {
+  if (steady.historyValid) {
+    auto firstGraph = buildFrameGraph(pipelines, first, {});
+    steady.historyStates = historyStatesAfter(firstGraph.graph, firstGraph.graph.compile());
+  }
+  return buildFrameGraph(pipelines, steady, {});
+}
+
 HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
   std::map<std::pair<std::string, bool>, graph::ImageState> next;  // (base, current next frame) -> state
   for (graph::ResourceId id = 0; id < graph.resources().size(); ++id) {

@@ -38,6 +38,12 @@ FrameGraph buildFrameGraph(PipelineCache& pipelines, const FrameBuilder::Setup& 
 // The same bookkeeping as PhysicalResources::keepFinalStates and swapHistory.
 HistoryStates historyStatesAfter(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled);
 
+// A steady-state frame's graph for tools that compile frames without running them (`aoreplay
+// graph`, ao_bench's pass list): when `steady` has valid history, `first` (a frame without history,
+// sharing `steady`'s technique state) is built before it, so that `steady` starts from the history
+// states `first` left and a technique that keeps state per frame (rtao) has seen the frame before.
+FrameGraph buildSteadyStateFrameGraph(PipelineCache& pipelines, const FrameBuilder::Setup& first, FrameBuilder::Setup steady);
+
 // Test-only fault injection (ReplayOptions::testPoisonHistoryAt): one pass that fills the history
 // `base`'s `previous` image with `value`, so a test can show on a real device what a technique makes
 // of history no correct frame can leave (NaN, Inf). Never part of a normal replay.
