@@ -11,53 +11,26 @@ layout(set = 0, binding = 1) uniform sampler2D sourceEdges;    // R8_UNORM packe
 layout(push_constant, scalar) uniform Push { XeGtaoConstants pc; };
 #ifdef XEGTAO_LAST_PASS
 layout(set = 0, binding = 2) uniform writeonly image2D outputAo;  // R16F visibility, or RGBA16F bent.xyz + visibility
-layout(set = 0, binding = 3, std430) readonly buffer SkyMask { uint skyMask[]; };  // the prefilter's, see xegtao.h
 #else
 layout(set = 0, binding = 2) uniform writeonly uimage2D outputAo;  // the working term again
 #endif
 
 #include "xegtao_common.glsl"
-
-// AOTermType: visibility in w (bent normal, XeGTAO's view space, in xyz when kBent).
-vec4 decodeTerm(uint packedValue) {
-  if (!kBent) return vec4(float(packedValue) / 255.0);
-  vec4 decoded = xegtaoUnpackUnorm8x4(packedValue);
-  return vec4(decoded.xyz * 2.0 - 1.0, decoded.w);
-}
+#include "xegtao_output.glsl"
 
 // XeGTAO_DecodeGatherPartial.
 void decodeQuad(uvec4 packedValues, out vec4 decoded[4]) {
   for (int i = 0; i < 4; ++i) decoded[i] = decodeTerm(packedValues[i]);
 }
 
-// XeGTAO_Output. The last pass applies the shared front's sky rule (sky and invalid depth occlude
-// nothing: visibility 1, bent normal towards the viewer), which XeGTAO leaves to the engine; every
-// pass before it blends XeGTAO's own values at sky pixels, as XeGTAO's denoiser does.
-void storeTerm(ivec2 pixel, vec4 term, bool sky) {
+// XeGTAO_Output. The sky is left to the sky pass after the last denoise (sky.comp), as XeGTAO
+// leaves it to the engine: every pass here blends and stores XeGTAO's own values at sky pixels.
+void storeTerm(ivec2 pixel, vec4 term) {
   if (any(greaterThanEqual(pixel, pc.viewportSize))) return;
 #ifdef XEGTAO_LAST_PASS
-  float scale = kXeGtaoOcclusionTermScale;
-  if (sky) {
-    vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
-    term = vec4(-xegtaoViewPosition(screenPos, 1.0), 1.0 / scale);  // the view vector, unnormalised
-  }
+  imageStore(outputAo, pixel, xegtaoEngineValue(term));
 #else
-  float scale = 1.0;
-#endif
-  uint packedValue;
-  if (kBent) packedValue = xegtaoPackUnorm8x4(vec4(normalize(term.xyz) * 0.5 + 0.5, term.w * scale));
-  else packedValue = uint(term.w * scale * 255.0 + 0.5);
-#ifdef XEGTAO_LAST_PASS
-  // What the engine reads from XeGTAO's 8-bit output; above 255 (visibility over 1 after the
-  // scale) it is full visibility.
-  if (kBent) {
-    vec4 decoded = decodeTerm(packedValue);
-    imageStore(outputAo, pixel, vec4(xegtaoFromToolView(decoded.xyz), decoded.w));
-  } else {
-    imageStore(outputAo, pixel, vec4(float(min(packedValue, 255u)) / 255.0));
-  }
-#else
-  imageStore(outputAo, pixel, uvec4(packedValue));
+  imageStore(outputAo, pixel, uvec4(xegtaoPackTerm(term, 1.0)));
 #endif
 }
 
@@ -68,13 +41,6 @@ void main() {
   float blurAmount = pc.denoiseBlurBeta / 5.0;
 #endif
   uvec2 base = gl_GlobalInvocationID.xy * uvec2(2u, 1u);
-#ifdef XEGTAO_LAST_PASS
-  // Both pixels' sky bits are in one word of the prefilter's mask (base.x is even): its quad's row.
-  uint skyBits = skyMask[xegtaoSkyMaskWord(ivec2(base) / 2, pc.viewportSize.x)] >> (2u * (base.y & 1u));
-  bool sky[2] = bool[2]((skyBits & 1u) != 0u, (skyBits & 2u) != 0u);
-#else
-  bool sky[2] = bool[2](false, false);
-#endif
   // Gathers at the top-left corner of `base` (component order x, y, z, w = (-1,+0), (+0,+0),
   // (+0,-1), (-1,-1) from the gather's texel), shifted by their offsets.
   vec2 gatherCenter = vec2(base) * pc.viewportPixelSize;
@@ -127,6 +93,6 @@ void main() {
     sum += weightTR * valueTR; sumWeight += weightTR;
     sum += weightBL * valueBL; sumWeight += weightBL;
     sum += weightBR * valueBR; sumWeight += weightBR;
-    storeTerm(ivec2(base) + ivec2(side, 0), sum / sumWeight, sky[side]);
+    storeTerm(ivec2(base) + ivec2(side, 0), sum / sumWeight);
   }
 }

@@ -7,7 +7,6 @@
 #include "xegtao.h"
 
 layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
-layout(constant_id = kXeGtaoSpecReversedDepth) const bool kReversedDepth = false;  // for the sky mask
 layout(push_constant, scalar) uniform Push {
   XeGtaoConstants pc;
   int mipLevels;  // levels the chain has: fewer than 5 for frames under 16 pixels a side
@@ -19,10 +18,8 @@ layout(set = 0, binding = 2) uniform writeonly image2D depthMip1;
 layout(set = 0, binding = 3) uniform writeonly image2D depthMip2;
 layout(set = 0, binding = 4) uniform writeonly image2D depthMip3;
 layout(set = 0, binding = 5) uniform writeonly image2D depthMip4;
-layout(set = 0, binding = 6, std430) writeonly buffer SkyMask { uint skyMask[]; };  // see xegtao.h
 
 #include "xegtao_common.glsl"
-#include "../blocks/linearize_depth.h"
 
 shared float scratchDepths[8][8];
 
@@ -47,22 +44,6 @@ float mipFilter(float d0, float d1, float d2, float d3) {
   float w3 = clamp((maxDepth - d3) * falloffMul + falloffAdd, 0.0, 1.0);
   float weightSum = w0 + w1 + w2 + w3;
   return (w0 * d0 + w1 * d1 + w2 * d2 + w3 * d3) / weightSum;
-}
-
-// The shared front's sky rule (blocks/linearize_depth.h: sky where linearViewDistance returns
-// kSkyDistance) for four depths at once, 1 where sky: depth outside [0, far) (NaN, infinite,
-// beyond the far value, out of [0, 1]) or a distance outside (0, 1e15]. The distance is XeGTAO's
-// unclamped view z, bit for bit the front's P32 / (d + P22) (the same division with both operands
-// negated). The depth range is tested on the float's bits, in fewer operations than comparisons:
-// [0, 1) is +0 .. 1 - ulp and -0, (0, 1] is the bits 1 .. those of 1.0 (NaN and infinities lie
-// above, negative values above as unsigned).
-uvec4 skyBits(vec4 depth, vec4 viewZ) {
-  uvec4 bits = floatBitsToUint(depth);
-  const uint one = 0x3f800000u;  // 1.0
-  bvec4 depthValid = kReversedDepth ? lessThan(bits - 1u, uvec4(one))
-                                    : bvec4(uvec4(lessThan(bits, uvec4(one))) | uvec4(equal(bits, uvec4(0x80000000u))));
-  bvec4 distanceValid = bvec4(uvec4(greaterThan(viewZ, vec4(0.0))) & uvec4(lessThanEqual(viewZ, vec4(kMaxViewDistance))));
-  return uvec4(not(bvec4(uvec4(depthValid) & uvec4(distanceValid))));
 }
 
 // XeGTAO writes every texel of the 16x16 tile; a storage write outside the image is undefined in
@@ -97,9 +78,6 @@ void main() {
   vec4 viewZ = xegtaoUnclampedViewDepth(screenDepths);
   vec4 depths = xegtaoClampDepth(viewZ);
   float d0 = depths.x, d1 = depths.y, d2 = depths.z, d3 = depths.w;
-  // The quad's sky bits (TL, TR, BL, BR = bits 0-3) for the last denoise pass: one word a thread.
-  uvec4 sky = skyBits(screenDepths, viewZ) << uvec4(0u, 1u, 2u, 3u);
-  skyMask[xegtaoSkyMaskWord(ivec2(base), pc.viewportSize.x)] = sky.x | sky.y | sky.z | sky.w;
   if (inLevel(0, pixel)) imageStore(depthMip0, pixel, vec4(d0));
   if (inLevel(0, pixel + ivec2(1, 0))) imageStore(depthMip0, pixel + ivec2(1, 0), vec4(d1));
   if (inLevel(0, pixel + ivec2(0, 1))) imageStore(depthMip0, pixel + ivec2(0, 1), vec4(d2));

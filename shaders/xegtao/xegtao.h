@@ -16,7 +16,7 @@ AOR_CONST int kXeGtaoSpecDepth32 = 4;     // XE_GTAO_FP32_DEPTHS: the centre pul
 // s * s, as XeGTAO gets with XE_GTAO_USE_DEFAULT_CONSTANTS; a power per sample is most of the main
 // pass's arithmetic on a CPU device.
 AOR_CONST int kXeGtaoSpecSampleDistributionPower = 5;
-AOR_CONST int kXeGtaoSpecReversedDepth = 6;  // the prefilter's sky mask: the capture's depth convention
+AOR_CONST int kXeGtaoSpecReversedDepth = 6;  // the sky pass: the capture's depth convention
 
 AOR_CONST int kXeGtaoDepthMipLevels = 5;         // XE_GTAO_DEPTH_MIP_LEVELS
 AOR_CONST uint kXeGtaoWorkgroupSize = 8u;        // XE_GTAO_NUMTHREADS_X/Y (the prefilter: 8x8 threads, 2x2 pixels each, 16x16 a group)
@@ -39,12 +39,6 @@ AOR_CONST float kXeGtaoDefaultSampleDistributionPower = 2.0f;
 AOR_CONST float kXeGtaoDefaultThinOccluderCompensation = 0.0f;
 AOR_CONST float kXeGtaoDefaultFinalValuePower = 2.2f;
 AOR_CONST float kXeGtaoDefaultDepthMipSamplingOffset = 3.30f;
-
-// The sky mask (not XeGTAO's: the shared front's sky rule, see README): the prefilter, which reads
-// every depth anyway, writes one word per thread, its 2x2 quad's sky bits (TL, TR, BL, BR = bits
-// 0-3); the last denoise pass, whose threads' two pixels lie in one quad, reads one word.
-AOR_FUNC uint xegtaoSkyMaskWords(ivec2 size) { return uint((size.x + 1) / 2) * uint((size.y + 1) / 2); }
-AOR_FUNC uint xegtaoSkyMaskWord(ivec2 quad, int width) { return uint(quad.y) * uint((width + 1) / 2) + uint(quad.x); }
 
 // GTAOConstants, member for member (96 bytes, no member straddling 16 bytes: the same offsets under
 // HLSL cbuffer packing and scalar layout), then the axis signs.

@@ -1,5 +1,5 @@
 // XeGTAO's three passes (vaGTAO.cpp's Compute, in this tool's render graph): prefilter, main pass,
-// denoise_passes x denoise; and the screen-radius debug pass.
+// denoise_passes x denoise; then the sky pass (the engine's part) and the screen-radius debug pass.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -89,35 +89,27 @@ shader::XeGtaoConstants xegtaoConstants(const FrameCamera& camera, const XeGtaoS
   return c;
 }
 
-XeGtaoDepth addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings) {
+graph::ResourceId addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings) {
   glm::uvec2 size = frame.size();
   uint32_t levels = depthMipLevels(size);
   VkFormat format = settings.depth32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R16_SFLOAT;
-  XeGtaoDepth out;
-  out.mips = frame.graph().createImage("depth_mips", {size.x, size.y, format, levels});
-  uint32_t maskWords = shader::xegtaoSkyMaskWords(glm::ivec2(size));
-  out.skyMask = frame.graph().createBuffer("sky_mask", {maskWords * sizeof(uint32_t)});
-  auto params = projectionParams(frame.camera().projection, frame.camera().width, frame.camera().height);
+  auto mips = frame.graph().createImage("depth_mips", {size.x, size.y, format, levels});
   PrefilterPush push{xegtaoConstants(frame.camera(), settings), int32_t(levels)};
-  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecReversedDepth, params.reversedDepth)};
   auto depth = frame.depth();
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
       "xegtao_prefilter",
       [&](graph::PassBuilder& b) {
         b.read(depth, graph::Access::SampledRead);
-        b.write(out.mips);
-        b.write(out.skyMask, graph::Access::StorageWrite);
+        b.write(mips);
       },
-      [&pipelines, push, specialization, depth, out, levels, size](graph::PassContext& ctx) {
+      [&pipelines, push, depth, mips, levels, size](graph::PassContext& ctx) {
         auto level = [&](uint32_t k) { return graph::Subresources::mip(std::min(k, levels - 1)); };
-        auto mips = out.mips;
-        dispatchCompute(ctx, pipelines.get("xegtao/prefilter_depths", specialization),
-                        {depth, {mips, level(0)}, {mips, level(1)}, {mips, level(2)}, {mips, level(3)}, {mips, level(4)},
-                         out.skyMask},
+        dispatchCompute(ctx, pipelines.get("xegtao/prefilter_depths"),
+                        {depth, {mips, level(0)}, {mips, level(1)}, {mips, level(2)}, {mips, level(3)}, {mips, level(4)}},
                         &push, (size.x + 1) / 2, (size.y + 1) / 2);
       });
-  return out;
+  return mips;
 }
 
 XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips) {
@@ -161,8 +153,7 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
   return out;
 }
 
-graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working,
-                                   graph::ResourceId skyMask) {
+graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working) {
   glm::uvec2 size = frame.size();
   auto& g = frame.graph();
   auto constants = xegtaoConstants(frame.camera(), settings);
@@ -183,17 +174,36 @@ graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& se
         [&](graph::PassBuilder& b) {
           b.read(source, graph::Access::SampledRead);
           b.read(edges, graph::Access::SampledRead);
-          if (last) b.read(skyMask, graph::Access::StorageRead);  // the sky rule
           b.write(target);
         },
-        [&pipelines, shader, specialization, constants, source, edges, target, skyMask, last, size](graph::PassContext& ctx) {
-          const auto& pipeline = pipelines.get(shader, specialization);
-          if (last) dispatchCompute(ctx, pipeline, {source, edges, target, skyMask}, &constants, (size.x + 1) / 2, size.y);
-          else dispatchCompute(ctx, pipeline, {source, edges, target}, &constants, (size.x + 1) / 2, size.y);
+        [&pipelines, shader, specialization, constants, source, edges, target, size](graph::PassContext& ctx) {
+          dispatchCompute(ctx, pipelines.get(shader, specialization), {source, edges, target}, &constants,
+                          (size.x + 1) / 2, size.y);
         });
     source = target;
   }
   return source;
+}
+
+void addXeGtaoSky(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId denoised) {
+  glm::uvec2 size = frame.size();
+  auto constants = xegtaoConstants(frame.camera(), settings);
+  auto params = projectionParams(frame.camera().projection, frame.camera().width, frame.camera().height);
+  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecBent, settings.bent),
+                                                  spec(shader::kXeGtaoSpecReversedDepth, params.reversedDepth)};
+  auto depth = frame.depth();
+  auto& pipelines = frame.pipelines();
+  frame.graph().addPass(
+      "xegtao_sky",
+      [&](graph::PassBuilder& b) {
+        b.read(depth, graph::Access::SampledRead);
+        b.read(denoised, graph::Access::StorageRead);  // in place: only the sky pixels change
+        b.write(denoised);
+      },
+      [&pipelines, specialization, constants, depth, denoised, size](graph::PassContext& ctx) {
+        dispatchCompute(ctx, pipelines.get("xegtao/sky", specialization), {depth, denoised}, &constants, (size.x + 1) / 2,
+                        (size.y + 1) / 2);
+      });
 }
 
 graph::ResourceId addXeGtaoScreenRadius(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips) {

@@ -33,16 +33,13 @@ struct XeGtaoWorking {
   graph::ResourceId aoTerm = graph::kNoResource;  // R8_UINT (R32_UINT with bent normals)
   graph::ResourceId edges = graph::kNoResource;   // R8_UNORM
 };
-struct XeGtaoDepth {
-  graph::ResourceId mips = graph::kNoResource;     // the 5-level view-z chain (R16F, R32F with depth32)
-  graph::ResourceId skyMask = graph::kNoResource;  // 1 bit per pixel, the shared front's sky rule (xegtao.h)
-};
-XeGtaoDepth addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings);
+// The 5-level view-z chain (R16F, R32F with depth32).
+graph::ResourceId addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings);
 XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips);
 // denoise_passes dispatches; the last writes R16F visibility (RGBA16F bent.xyz + visibility).
-// The last pass applies the sky rule from `skyMask`.
-graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working,
-                                   graph::ResourceId skyMask);
+graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working);
+// Not XeGTAO's: the shared front's sky rule applied to the denoised output in place (sky.comp).
+void addXeGtaoSky(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId denoised);
 // --debug screen_radius: the main pass's screen-space radius per pixel (R32F).
 graph::ResourceId addXeGtaoScreenRadius(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips);
 

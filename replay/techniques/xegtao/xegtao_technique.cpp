@@ -12,10 +12,10 @@ namespace {
 
 void addXeGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
   XeGtaoSettings x = xegtaoSettings(settings);
-  XeGtaoDepth depth = addXeGtaoPrefilter(frame, x);
-  auto mips = depth.mips;
+  auto mips = addXeGtaoPrefilter(frame, x);
   auto working = addXeGtaoMainPass(frame, x, mips);
-  auto denoised = addXeGtaoDenoise(frame, x, working, depth.skyMask);
+  auto denoised = addXeGtaoDenoise(frame, x, working);
+  addXeGtaoSky(frame, x, denoised);
 
   frame.debugView("linear_depth", mips, {0, 1, 0, 1});
   uint32_t levels = frame.graph().resources().at(mips).desc.mipLevels;
@@ -72,7 +72,7 @@ Technique makeXeGtao() {
       {"screen_radius", "the main pass's screen-space radius, pixels (R32F)"},
       {"edges", "packed edges for the denoiser (R8_UNORM: 2 bits a side, left in the top bits)"},
       {"ao_raw", "the main pass's working term as stored: round(255 x visibility / 1.5) (bent=1: RGBA8 packed in R32)"},
-      {"ao_denoised", "after the last denoise pass, before any temporal pass: visibility (bent=1: RGBA, bent.xyz + visibility)"},
+      {"ao_denoised", "after the last denoise pass and the sky pass, before any temporal pass: visibility (bent=1: RGBA, bent.xyz + visibility)"},
       {"mip_taps", "report.json frames[i].debug.mip_taps: the main pass's depth taps per MIP level 0-4"},
   };
   t.addPasses = addXeGtaoPipeline;
