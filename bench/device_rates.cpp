@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "embedded_shaders.h"
+#include "shaders/copy_rate.h"
 #include "shaders/fetch_rate.h"
 #include "timed_rig.h"
 #include "vk/dispatch.h"
@@ -43,6 +44,41 @@ double copyMs(Rig& rig, uint64_t bytes, int reps, double warmupMs) {
   VkBufferCopy region{0, 0, bytes};
   double ms = medianMs([&] { return rig.timed([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, from.buffer, to.buffer, 1, &region); }); },
                        reps, warmupMs);
+  destroyBuffer(vk, to);
+  destroyBuffer(vk, from);
+  return ms;
+}
+
+// The same bytes copied by copy_rate.comp: the load/store path passes use.
+double shaderCopyMs(Rig& rig, uint64_t bytes, int reps, double warmupMs) {
+  VulkanContext& vk = rig.vk;
+  GpuBuffer from = createDeviceBuffer(vk, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  GpuBuffer to = createDeviceBuffer(vk, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  rig.timed([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, from.buffer, 0, VK_WHOLE_SIZE, 0x3f800000u); });
+  ComputePipeline pipeline = createComputePipeline(vk, spirv::code("copy_rate", spirv::aor_bench_shaders()), "copy_rate");
+  BoundResource bound[2];
+  bound[0].buffer = from.buffer;
+  bound[1].buffer = to.buffer;
+  shader::CopyRateConstants constants{uint32_t(bytes / 16)};
+  uint64_t groups = (constants.vec4s + shader::kCopyRateWorkgroupSize - 1) / shader::kCopyRateWorkgroupSize;
+  DispatchGroups grid{uint32_t(std::min<uint64_t>(groups, shader::kCopyRateMaxGroups)), 1, 1};
+  VkMemoryBarrier2 filled{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  filled.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  filled.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  filled.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  filled.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  double ms = medianMs(
+      [&] {
+        return rig.timed([&](VkCommandBuffer cmd) {
+          VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+          dependency.memoryBarrierCount = 1;
+          dependency.pMemoryBarriers = &filled;
+          vkCmdPipelineBarrier2(cmd, &dependency);
+          recordDispatch(vk, cmd, pipeline, bound, &constants, grid);
+        });
+      },
+      reps, warmupMs);
+  destroyPipeline(vk, pipeline);
   destroyBuffer(vk, to);
   destroyBuffer(vk, from);
   return ms;
@@ -113,11 +149,15 @@ DeviceRates measureDeviceRates(VulkanContext& vk, uint64_t copyBytes, std::pair<
   DeviceRates rates;
   rates.fetchSize = fetchSize;
   for (uint64_t bytes = std::min<uint64_t>(copyBytes, 1u << 20);; bytes = std::min(bytes * 4, copyBytes)) {
-    CopyRate copy{bytes, 2.0 * double(bytes) / copyMs(rig, bytes, reps, warmupMs)};
-    rates.copies.push_back(copy);
-    if (copy.bytesPerMs > rates.copyBytesPerMs) {
-      rates.copyBytesPerMs = copy.bytesPerMs;
-      rates.copyBytes = bytes;
+    for (CopyPath path : {CopyPath::Transfer, CopyPath::Shader}) {
+      double ms = path == CopyPath::Transfer ? copyMs(rig, bytes, reps, warmupMs) : shaderCopyMs(rig, bytes, reps, warmupMs);
+      CopyRate copy{bytes, 2.0 * double(bytes) / ms, path};
+      rates.copies.push_back(copy);
+      if (copy.bytesPerMs > rates.copyBytesPerMs) {
+        rates.copyBytesPerMs = copy.bytesPerMs;
+        rates.copyBytes = bytes;
+        rates.copyPath = path;
+      }
     }
     if (bytes == copyBytes) break;
   }

@@ -1,6 +1,7 @@
 #pragma once
 // A device's measured rates, the denominators of a pass's floor (bench/floor.h): the bandwidth of
-// buffer copies (vkCmdCopyBuffer, bytes read plus bytes written per ms) at sizes from 1 MiB up to
+// buffer copies (vkCmdCopyBuffer and a compute shader's copy, bytes read plus bytes written per
+// ms) at sizes from 1 MiB up to
 // the largest asked, the rate of texelFetch from an R32F image in cache (fetch_rate.comp), and the
 // time of one dispatch of a single workgroup; each the median of `reps` timed runs after a
 // warm-up, from timestamp queries.
@@ -17,9 +18,16 @@
 
 namespace aor::bench {
 
+// vkCmdCopyBuffer, or copy_rate.comp's storage-buffer copy: a pass moves its bytes through the
+// shader's load/store path, which on a GPU whose copies run on a copy engine is the faster one
+// (an H200: 0.85 TB/s by vkCmdCopyBuffer, below what its blur passes were measured to move).
+enum class CopyPath { Transfer, Shader };
+inline const char* copyPathName(CopyPath p) { return p == CopyPath::Transfer ? "vkCmdCopyBuffer" : "shader"; }
+
 struct CopyRate {
   uint64_t bytes = 0;       // the copied buffer's size
   double bytesPerMs = 0;    // read + written
+  CopyPath path = CopyPath::Transfer;
 };
 
 struct DeviceRates {
@@ -27,7 +35,8 @@ struct DeviceRates {
   double texelFetchesPerMs = 0;
   double dispatchMs = 0;         // one dispatch of one workgroup, the least any pass can take
   uint64_t copyBytes = 0;        // the size the fastest copy ran at
-  std::vector<CopyRate> copies;  // 1 MiB, 4 MiB, ... up to the largest asked
+  CopyPath copyPath = CopyPath::Transfer;  // and its path
+  std::vector<CopyRate> copies;  // 1 MiB, 4 MiB, ... up to the largest asked, each by both paths
   std::pair<int, int> fetchSize;  // the fetch kernel's grid
 };
 

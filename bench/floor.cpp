@@ -20,12 +20,13 @@ PassFloor passFloor(const std::string& config, const DispatchCounts& counts, con
 
 void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const DeviceRates* rates) {
   if (rates)
-    fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, fastest at {} MiB), texelFetch {:.1f} G/s (R32F, {}x{}), "
+    fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, fastest: {} at {} MiB), texelFetch {:.1f} G/s (R32F, {}x{}), "
                "empty dispatch {:.4f} ms\n",
-               rates->copyBytesPerMs * 1e-6, rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
+               rates->copyBytesPerMs * 1e-6, copyPathName(rates->copyPath), rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
                rates->fetchSize.first, rates->fetchSize.second, rates->dispatchMs);
   if (rates)
-    for (const auto& c : rates->copies) fmt::print(out, "  copy {:>5} MiB: {:.1f} GB/s\n", c.bytes >> 20, c.bytesPerMs * 1e-6);
+    for (const auto& c : rates->copies)
+      fmt::print(out, "  copy {:>5} MiB, {:<15}: {:.1f} GB/s\n", c.bytes >> 20, copyPathName(c.path), c.bytesPerMs * 1e-6);
   fmt::print(out, "{:<34} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9} {:>9} {:>7} {}\n", "config", "pass", "tex reads",
              "stores", "MB read", "MB written", "ms", "floor ms", "ratio", "bound by");
   for (const auto& r : rows) {
@@ -43,9 +44,11 @@ nlohmann::json floorJson(const std::vector<PassFloor>& rows, const DeviceRates* 
   if (rates) {
     j["rates"] = {{"copy_bytes_per_ms", rates->copyBytesPerMs}, {"texel_fetches_per_ms", rates->texelFetchesPerMs},
                   {"dispatch_ms", rates->dispatchMs}, {"copy_buffer_bytes", rates->copyBytes},
+                  {"copy_path", copyPathName(rates->copyPath)},
                   {"fetch_grid", {rates->fetchSize.first, rates->fetchSize.second}}};
     auto& copies = j["rates"]["copies"] = nlohmann::json::array();
-    for (const auto& c : rates->copies) copies.push_back({{"bytes", c.bytes}, {"bytes_per_ms", c.bytesPerMs}});
+    for (const auto& c : rates->copies)
+      copies.push_back({{"bytes", c.bytes}, {"bytes_per_ms", c.bytesPerMs}, {"path", copyPathName(c.path)}});
   }
   auto& passes = j["passes"] = nlohmann::json::array();
   for (const auto& r : rows) {
