@@ -100,15 +100,18 @@ void toGeneral(VkCommandBuffer cmd, VkImage image, VkPipelineStageFlags2 dstStag
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-// The fetch kernel over a width x height grid: milliseconds per dispatch. A 1x1 grid (one
-// workgroup, one live invocation) times what a dispatch costs before it does any work.
-double fetchMs(Rig& rig, std::pair<int, int> size, int reps, double warmupMs) {
+// The fetch kernel over a width x height grid, its taps `spread` pixels out at most (0: the 8x8
+// neighbourhood): milliseconds per dispatch. A 1x1 grid (one workgroup, one live invocation)
+// times what a dispatch costs before it does any work.
+double fetchMs(Rig& rig, std::pair<int, int> size, int reps, double warmupMs, int spread = 0) {
   VulkanContext& vk = rig.vk;
   auto [width, height] = size;
   GpuImage source = createImage(vk, width, height, VK_FORMAT_R32_SFLOAT,
                                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   GpuImage target = createImage(vk, width, height, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT);
-  ComputePipeline pipeline = createComputePipeline(vk, spirv::code("fetch_rate", spirv::aor_bench_shaders()), "fetch_rate");
+  SpecializationValue spreadValue{0, uint32_t(spread)};
+  ComputePipeline pipeline = createComputePipeline(vk, spirv::code("fetch_rate", spirv::aor_bench_shaders()), "fetch_rate",
+                                                   {&spreadValue, 1});
   rig.timed([&](VkCommandBuffer cmd) {
     toGeneral(cmd, source.image, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkClearColorValue half{{0.5f, 0.5f, 0.5f, 0.5f}};
@@ -163,6 +166,8 @@ DeviceRates measureDeviceRates(VulkanContext& vk, uint64_t copyBytes, std::pair<
   }
   double fetches = double(fetchSize.first) * fetchSize.second * shader::kFetchRateTaps;
   rates.texelFetchesPerMs = fetches / fetchMs(rig, fetchSize, reps, warmupMs);
+  for (int spread : kScatteredFetchSpreads)
+    rates.scatteredFetches.push_back({spread, fetches / fetchMs(rig, fetchSize, reps, warmupMs, spread)});
   rates.dispatchMs = fetchMs(rig, {1, 1}, reps, warmupMs);
   return rates;
 }

@@ -30,6 +30,14 @@ struct CopyRate {
   CopyPath path = CopyPath::Transfer;
 };
 
+// texelFetch of taps scattered out to `spread` pixels along directions that turn per pixel, as a
+// horizon search's (fetch_rate.comp): not a floor, an explanation of a pass far above its floor.
+struct ScatteredFetchRate {
+  int spread = 0;
+  double texelFetchesPerMs = 0;
+};
+inline constexpr int kScatteredFetchSpreads[] = {8, 32, 128};
+
 struct DeviceRates {
   double copyBytesPerMs = 0;     // the fastest of `copies`
   double texelFetchesPerMs = 0;
@@ -38,6 +46,7 @@ struct DeviceRates {
   CopyPath copyPath = CopyPath::Transfer;  // and its path
   std::vector<CopyRate> copies;  // 1 MiB, 4 MiB, ... up to the largest asked, each by both paths
   std::pair<int, int> fetchSize;  // the fetch kernel's grid
+  std::vector<ScatteredFetchRate> scatteredFetches;  // kScatteredFetchSpreads, on the same grid
 };
 
 // `copyBytes`: the largest copy.

@@ -25,6 +25,9 @@ void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const D
                rates->copyBytesPerMs * 1e-6, copyPathName(rates->copyPath), rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
                rates->fetchSize.first, rates->fetchSize.second, rates->dispatchMs);
   if (rates)
+    for (const auto& f : rates->scatteredFetches)
+      fmt::print(out, "  texelFetch scattered to {:>3} px: {:.1f} G/s (not in the floor)\n", f.spread, f.texelFetchesPerMs * 1e-6);
+  if (rates)
     for (const auto& c : rates->copies)
       fmt::print(out, "  copy {:>5} MiB, {:<15}: {:.1f} GB/s\n", c.bytes >> 20, copyPathName(c.path), c.bytesPerMs * 1e-6);
   fmt::print(out, "{:<34} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9} {:>9} {:>7} {}\n", "config", "pass", "tex reads",
@@ -46,6 +49,9 @@ nlohmann::json floorJson(const std::vector<PassFloor>& rows, const DeviceRates* 
                   {"dispatch_ms", rates->dispatchMs}, {"copy_buffer_bytes", rates->copyBytes},
                   {"copy_path", copyPathName(rates->copyPath)},
                   {"fetch_grid", {rates->fetchSize.first, rates->fetchSize.second}}};
+    auto& scattered = j["rates"]["scattered_fetches"] = nlohmann::json::array();
+    for (const auto& f : rates->scatteredFetches)
+      scattered.push_back({{"spread_px", f.spread}, {"texel_fetches_per_ms", f.texelFetchesPerMs}});
     auto& copies = j["rates"]["copies"] = nlohmann::json::array();
     for (const auto& c : rates->copies)
       copies.push_back({{"bytes", c.bytes}, {"bytes_per_ms", c.bytesPerMs}, {"path", copyPathName(c.path)}});
