@@ -198,7 +198,7 @@ std::vector<std::vector<float>> replayedVisibility(VulkanContext& vk, const Capt
 // The tolerance of the README ("The two paths"): a pixel differs visibly beyond kPixelTolerance;
 // at most kDifferingFraction of all pixels of all frames may, and the mean |difference| is at most
 // kMeanTolerance.
-constexpr double kPixelTolerance = 1e-3, kDifferingFraction = 1e-3, kMeanTolerance = 1e-4;
+constexpr double kPixelTolerance = 1e-3, kDifferingFraction = 1e-4, kMeanTolerance = 1e-5;
 
 // |compute - rayquery| per pixel over every frame of two replays.
 struct PathDifference {
