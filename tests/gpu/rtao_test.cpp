@@ -204,6 +204,7 @@ constexpr double kPixelTolerance = 1e-3, kDifferingFraction = 1e-4, kMeanToleran
 struct PathDifference {
   double max = 0, mean = 0, meanVisibility = 0;
   size_t pixels = 0, differing = 0, beyond = 0;  // all; |d| > 0; |d| > kPixelTolerance
+  size_t computeBrighter = 0;                    // of `beyond`: the compute path's rays found less occlusion
 };
 
 PathDifference differenceOf(const std::vector<std::vector<float>>& a, const std::vector<std::vector<float>>& b) {
@@ -216,6 +217,7 @@ PathDifference differenceOf(const std::vector<std::vector<float>>& a, const std:
       d.meanVisibility += a[f][i];
       d.differing += diff > 0 ? 1 : 0;
       d.beyond += diff > kPixelTolerance ? 1 : 0;
+      d.computeBrighter += diff > kPixelTolerance && a[f][i] > b[f][i] ? 1 : 0;
       ++d.pixels;
     }
   d.mean /= double(d.pixels);
@@ -243,9 +245,9 @@ TEST(Rtao, RayQueryGivesTheComputeImageWithinTheTolerance) {
       ASSERT_EQ(rayQuery.size(), compute.size());
       PathDifference d = differenceOf(compute, rayQuery);
       std::printf("rtao %s %s: %zu frames, mean visibility %.4f; |compute - rayquery| max %.3g mean %.3g; %zu of %zu "
-                  "pixels differ, %zu by more than %g\n",
+                  "pixels differ, %zu by more than %g (%zu of them brighter in the compute path)\n",
                   name, occlusion.c_str(), compute.size(), d.meanVisibility, d.max, d.mean, d.differing, d.pixels, d.beyond,
-                  kPixelTolerance);
+                  kPixelTolerance, d.computeBrighter);
       EXPECT_LT(d.meanVisibility, 0.95) << "the rays must hit something for the comparison to mean anything";
       EXPECT_LE(d.mean, kMeanTolerance) << name << " " << occlusion;
       EXPECT_LE(double(d.beyond), kDifferingFraction * double(d.pixels)) << name << " " << occlusion;
