@@ -69,8 +69,9 @@ VkDeviceAddress addressOf(const VulkanContext& vk, const GpuBuffer& buffer) {
 
 // A structure of `build`'s type, sized for it with `primitives`, in its own device-local buffer;
 // sets `build`'s destination and returns the scratch bytes its build needs.
-VkDeviceSize createStructure(const VulkanContext& vk, const AccelFunctions& fn, VkAccelerationStructureBuildGeometryInfoKHR& build,
-                             uint32_t primitives, GpuBuffer& storage, uint64_t& bytes) {
+VkDeviceSize createStructure(const VulkanContext& vk, const AccelFunctions& fn,
+                             VkAccelerationStructureBuildGeometryInfoKHR& build, uint32_t primitives, GpuBuffer& storage,
+                             uint64_t& bytes) {
   VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
   fn.sizes(vk.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build, &primitives, &sizes);
   bytes = sizes.accelerationStructureSize;
@@ -91,7 +92,8 @@ VkDeviceAddress structureAddress(const VulkanContext& vk, const AccelFunctions& 
 }
 
 VkDeviceSize scratchAlignment(const VulkanContext& vk) {
-  VkPhysicalDeviceAccelerationStructurePropertiesKHR accel{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR accel{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &accel};
   vkGetPhysicalDeviceProperties2(vk.physicalDevice, &props);
   return std::max<VkDeviceSize>(1, accel.minAccelerationStructureScratchOffsetAlignment);
