@@ -1,7 +1,22 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages aoreplay needs to build, test and benchmark.
 # Idempotent: installs only what is missing, so it is cheap on a prepared machine.
+#
+# --backports (opt-in; CI and the default device stay on bookworm's lavapipe): also adds Debian's
+# bookworm-backports source and installs mesa-vulkan-drivers from it (Mesa 25.0, whose lavapipe has
+# VK_KHR_ray_query and VK_KHR_acceleration_structure), which REPLACES the system's Vulkan drivers,
+# bookworm's lavapipe included, for every user of the machine; the ray-query path of --technique
+# rtao then runs and its tests stop skipping (replay/techniques/rtao/README.md, "The ray-query
+# path", also shows how to try that lavapipe without installing it). Backports has apt priority
+# 100: nothing else is upgraded from it, now or later.
 set -euo pipefail
+backports=0
+for arg in "$@"; do
+  case "$arg" in
+    --backports) backports=1 ;;
+    *) echo "usage: $0 [--backports]" >&2; exit 2 ;;
+  esac
+done
 packages=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
@@ -34,4 +49,16 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   $sudo_cmd apt-get update -qq
   $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if ((backports)); then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  list=/etc/apt/sources.list.d/bookworm-backports.list
+  if ! grep -qs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/*; then
+    echo "deb http://deb.debian.org/debian bookworm-backports main" | $sudo_cmd tee "$list" >/dev/null
+  fi
+  $sudo_cmd apt-get update -qq
+  echo "installing mesa-vulkan-drivers from bookworm-backports"
+  $sudo_cmd apt-get install -y -qq --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 fi

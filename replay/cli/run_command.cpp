@@ -139,7 +139,7 @@ int runCommand(const RunArgs& args) {
   ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
   size_t validationMessages = 0;
   {
-    ContextScope context({args.device, args.validate});
+    ContextScope context({args.device, args.validate, optionalExtensionsOf({options.settings})});
     auto noHistory = replayWithoutHistory(context.vk, capture, options);
     result = replayCapture(context.vk, capture, options, [&](const FrameOutput& frame) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
@@ -241,12 +241,13 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
 }
 
 void registerDevicesCommand(CLI::App& app) {
-  app.add_subcommand("devices", "list Vulkan devices (index, name, driver)");
+  app.add_subcommand("devices", "list Vulkan devices (index, name, driver; [ray queries]: rtao's ray-query path runs there)");
   handlers()["devices"] = [] {
     auto devices = listDevices();
     if (devices.empty()) throw NoDeviceError("no Vulkan device found");
     for (const auto& d : devices)
-      fmt::print("{}: {} ({}, Vulkan {}){}\n", d.index, d.name, d.driver, d.apiVersion, d.isLavapipe ? " [default]" : "");
+      fmt::print("{}: {} ({}, Vulkan {}){}{}\n", d.index, d.name, d.driver, d.apiVersion, d.isLavapipe ? " [default]" : "",
+                 d.hasExtension(kRayQueryExtension) && d.hasExtension(kAccelerationStructureExtension) ? " [ray queries]" : "");
     return kExitOk;
   };
 }

@@ -140,7 +140,9 @@ int sweepCommand(const SweepArgs& args) {
   SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
   std::vector<SweepRow> rows;
   {
-    ContextScope context({args.device, false});
+    std::vector<Settings> runs;
+    for (const auto& config : configs) runs.push_back(config.settings);
+    ContextScope context({args.device, false, optionalExtensionsOf(std::move(runs))});
     info.device = context.vk.info.name;
     auto reference = sweepReference(context.vk, capture, begin, end, args.assignments);
     info.referenceKind = reference.kind;

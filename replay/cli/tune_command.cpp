@@ -214,7 +214,7 @@ int tuneCommand(const TuneArgs& args) {
   OutputDirectory out(args.out.empty() ? fs::path("out") / ("tune-" + technique.name) : fs::path(args.out), ResultKind::Tune, inputs);
 
   {
-    ContextScope context({args.device, false});
+    ContextScope context({args.device, false, optionalExtensionsOf({start})});
     run.device = context.vk.info.name;
     TuneProblem problem;
     problem.dimensions = run.dimensions;

@@ -16,7 +16,8 @@ VkImageUsageFlags imageUsageOf(Access access) {
     case Access::TransferWrite:
     case Access::ClearWrite: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     case Access::UniformRead:
-    case Access::IndirectRead: return 0;
+    case Access::IndirectRead:
+    case Access::AccelerationStructureRead: return 0;
   }
   return 0;
 }
@@ -27,6 +28,7 @@ VkBufferUsageFlags bufferUsageOf(Access access) {
     case Access::StorageWrite: return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     case Access::UniformRead: return VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
     case Access::IndirectRead: return VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    case Access::AccelerationStructureRead: return VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR;
     case Access::TransferRead: return VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     case Access::TransferWrite:
     case Access::ClearWrite: return VK_BUFFER_USAGE_TRANSFER_DST_BIT;

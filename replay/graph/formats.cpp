@@ -135,6 +135,8 @@ ImageState requiredState(Access access) {
       return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
     case Access::IndirectRead:
       return {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+    case Access::AccelerationStructureRead:
+      return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED};
   }
   return {};
 }
@@ -172,6 +174,7 @@ const char* accessName(Access access) {
     case Access::ClearWrite: return "clear";
     case Access::UniformRead: return "uniform read";
     case Access::IndirectRead: return "indirect read";
+    case Access::AccelerationStructureRead: return "acceleration structure read";
   }
   return "?";
 }
@@ -214,7 +217,7 @@ const char* layoutName(VkImageLayout layout) {
 }
 
 std::string stageNames(VkPipelineStageFlags2 stages) {
-  static const std::array<std::pair<VkPipelineStageFlags2, const char*>, 14> kNames = {{
+  static const std::array<std::pair<VkPipelineStageFlags2, const char*>, 15> kNames = {{
       {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, "DRAW_INDIRECT"},
       {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, "ALL_COMMANDS"},
       {VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, "TOP_OF_PIPE"},
@@ -229,12 +232,13 @@ std::string stageNames(VkPipelineStageFlags2 stages) {
       {VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT, "ALL_GRAPHICS"},
       {VK_PIPELINE_STAGE_2_HOST_BIT, "HOST"},
       {VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, "BOTTOM_OF_PIPE"},
+      {VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, "ACCELERATION_STRUCTURE_BUILD"},
   }};
   return flagNames(stages, kNames);
 }
 
 std::string accessNames(VkAccessFlags2 access) {
-  static const std::array<std::pair<VkAccessFlags2, const char*>, 15> kNames = {{
+  static const std::array<std::pair<VkAccessFlags2, const char*>, 17> kNames = {{
       {VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, "INDIRECT_COMMAND_READ"},
       {VK_ACCESS_2_MEMORY_READ_BIT, "MEMORY_READ"},
       {VK_ACCESS_2_MEMORY_WRITE_BIT, "MEMORY_WRITE"},
@@ -250,6 +254,8 @@ std::string accessNames(VkAccessFlags2 access) {
       {VK_ACCESS_2_UNIFORM_READ_BIT, "UNIFORM_READ"},
       {VK_ACCESS_2_HOST_READ_BIT, "HOST_READ"},
       {VK_ACCESS_2_HOST_WRITE_BIT, "HOST_WRITE"},
+      {VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, "ACCELERATION_STRUCTURE_READ"},
+      {VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR, "ACCELERATION_STRUCTURE_WRITE"},
   }};
   return flagNames(access, kNames);
 }

@@ -50,6 +50,7 @@ bool accessFits(graph::Access access, VkDescriptorType type) {
     case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
     case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE: return access == Access::SampledRead;
     case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return access == Access::UniformRead;
+    case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR: return access == Access::AccelerationStructureRead;
     default: return false;
   }
 }
@@ -70,6 +71,7 @@ BoundResource bindOne(graph::PassContext& ctx, const ShaderBinding& binding, con
   BoundResource r;
   if (decl.isBuffer()) {
     r.buffer = ctx.buffer(bind.id).buffer;
+    r.accelerationStructure = ctx.buffer(bind.id).accelerationStructure;
     return r;
   }
   const GpuImage& image = ctx.image(bind.id);

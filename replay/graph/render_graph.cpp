@@ -12,7 +12,9 @@ namespace aor::graph {
 namespace {
 
 bool imageOnly(Access access) { return access == Access::SampledRead; }
-bool bufferOnly(Access access) { return access == Access::UniformRead || access == Access::IndirectRead; }
+bool bufferOnly(Access access) {
+  return access == Access::UniformRead || access == Access::IndirectRead || access == Access::AccelerationStructureRead;
+}
 
 void validateDesc(const std::string& name, const ImageDesc& desc) {
   if (desc.width == 0 || desc.height == 0) {

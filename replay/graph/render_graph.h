@@ -45,8 +45,11 @@ enum class ResourceType : uint8_t { Image, Buffer };
 // ClearWrite is vkCmdClearColorImage or vkCmdFillBuffer: a transfer write in the CLEAR stage.
 // StorageRead/StorageWrite are storage images or storage buffers, by the resource's type;
 // UniformRead and IndirectRead are for buffers only, SampledRead for images only.
+// AccelerationStructureRead is a shader's ray queries against the acceleration structure a buffer
+// holds (GpuBuffer::accelerationStructure), which the dispatch binds as one.
 enum class Access : uint8_t {
-  SampledRead, StorageRead, StorageWrite, TransferRead, TransferWrite, ClearWrite, UniformRead, IndirectRead
+  SampledRead, StorageRead, StorageWrite, TransferRead, TransferWrite, ClearWrite, UniformRead, IndirectRead,
+  AccelerationStructureRead
 };
 
 // Synchronisation state of an image subresource or a buffer: what last touched it and, for

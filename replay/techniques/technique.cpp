@@ -1,6 +1,10 @@
 #include "techniques/technique.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
+
+#include "techniques/settings.h"
 
 namespace aor {
 
@@ -39,6 +43,19 @@ std::string Technique::presetList() const {
   std::vector<std::string> names;
   for (const auto& p : presets) names.push_back(p.name);
   return names.empty() ? "(none)" : fmt::format("{}", fmt::join(names, ", "));
+}
+
+std::function<std::vector<std::string>(const DeviceInfo& device)> optionalExtensionsOf(std::vector<Settings> runs) {
+  return [runs = std::move(runs)](const DeviceInfo& device) {
+    std::vector<std::string> wanted;
+    for (const auto& settings : runs) {
+      const Technique& t = settings.technique();
+      if (!t.deviceExtensions) continue;
+      for (auto& e : t.deviceExtensions(settings, device))
+        if (std::find(wanted.begin(), wanted.end(), e) == wanted.end()) wanted.push_back(std::move(e));
+    }
+    return wanted;
+  };
 }
 
 }  // namespace aor

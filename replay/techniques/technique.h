@@ -97,6 +97,9 @@ struct Technique {
   // Device extensions the settings need that `device` lacks (empty: it can run); the replay exits
   // 3 naming them.
   std::function<std::vector<std::string>(const Settings& settings, const DeviceInfo& device)> missingDeviceExtensions;
+  // Optional device extensions (vk/context.h) the settings would use on `device` when it offers
+  // them (rtao's ray queries): the command's context enables them. Empty: none.
+  std::function<std::vector<std::string>(const Settings& settings, const DeviceInfo& device)> deviceExtensions;
   // Per-replay state (optional).
   std::function<std::unique_ptr<TechniqueState>(const ReplaySetup& setup)> prepare;
 
@@ -107,5 +110,9 @@ struct Technique {
   std::string tunableKeyList() const;  // the keys `aoreplay tune` searches by default, or "(none)"
   std::string presetList() const;  // "low, medium, high, ultra" or "(none)"
 };
+
+// Technique::deviceExtensions of every settings in `runs`, as ContextOptions::optionalExtensions
+// takes them (a command that replays several techniques enables what any of them uses).
+std::function<std::vector<std::string>(const DeviceInfo& device)> optionalExtensionsOf(std::vector<Settings> runs);
 
 }  // namespace aor

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -142,7 +143,38 @@ void selectQueueFamily(VulkanContext& ctx) {
   throw NoDeviceError("the selected device has no compute queue with timestamp support");
 }
 
-void createDevice(VulkanContext& ctx) {
+// The ray-query group: ray queries need acceleration structures, which need deferred host operations
+// and buffer device addresses. Enabled together or not at all.
+const std::vector<std::string> kRayQueryGroup = {kRayQueryExtension, kAccelerationStructureExtension,
+                                                 VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+// Whether the device offers the ray-query group's extensions and the features they need.
+bool rayQueryGroupSupported(const VulkanContext& ctx) {
+  for (const auto& e : kRayQueryGroup)
+    if (!ctx.info.hasExtension(e)) return false;
+  VkPhysicalDeviceRayQueryFeaturesKHR rayQuery{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR accel{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rayQuery};
+  VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &accel};
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features12};
+  vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &features);
+  return rayQuery.rayQuery && accel.accelerationStructure && features12.bufferDeviceAddress;
+}
+
+// The optional extensions to enable: those a run asks for that the device supports. Only the
+// ray-query group is known; asking for anything else is a programming error.
+std::vector<std::string> optionalExtensionsToEnable(const VulkanContext& ctx, const ContextOptions& options) {
+  if (!options.optionalExtensions) return {};
+  bool rayQuery = false;
+  for (const auto& e : options.optionalExtensions(ctx.info)) {
+    if (e != kRayQueryExtension && e != kAccelerationStructureExtension)
+      throw std::logic_error(fmt::format("the Vulkan context cannot enable the optional extension {}", e));
+    rayQuery = true;
+  }
+  return rayQuery && rayQueryGroupSupported(ctx) ? kRayQueryGroup : std::vector<std::string>{};
+}
+
+void createDevice(VulkanContext& ctx, const ContextOptions& options) {
   selectQueueFamily(ctx);
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -150,19 +182,29 @@ void createDevice(VulkanContext& ctx) {
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
 
-  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  ctx.enabledOptionalExtensions = optionalExtensionsToEnable(ctx, options);
+  bool rayQuery = ctx.enabled(kRayQueryExtension);
+  VkPhysicalDeviceRayQueryFeaturesKHR rayQueryFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  rayQueryFeatures.rayQuery = VK_TRUE;
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR accelFeatures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rayQueryFeatures};
+  accelFeatures.accelerationStructure = VK_TRUE;
+  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                              rayQuery ? &accelFeatures : nullptr};
   features13.synchronization2 = VK_TRUE;
   VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
   features12.scalarBlockLayout = VK_TRUE;
+  features12.bufferDeviceAddress = rayQuery ? VK_TRUE : VK_FALSE;  // acceleration structures are built from addresses
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features12};
   features.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
 
-  const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  for (const auto& e : ctx.enabledOptionalExtensions) extensions.push_back(e.c_str());
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queueInfo;
-  info.enabledExtensionCount = 1;
-  info.ppEnabledExtensionNames = extensions;
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   VkResult result = vkCreateDevice(ctx.physicalDevice, &info, nullptr, &ctx.device);
   if (result == VK_ERROR_EXTENSION_NOT_PRESENT || result == VK_ERROR_FEATURE_NOT_PRESENT)
     throw NoDeviceError(fmt::format("device '{}' lacks Vulkan 1.3 with push descriptors, scalar block layout and synchronization2 ({})",
@@ -188,6 +230,11 @@ VkSampler createSampler(VkDevice device, VkFilter filter) {
 
 bool DeviceInfo::hasExtension(const std::string& name) const {
   return std::find(extensions.begin(), extensions.end(), name) != extensions.end();
+}
+
+bool VulkanContext::enabled(const std::string& extension) const {
+  return std::find(enabledOptionalExtensions.begin(), enabledOptionalExtensions.end(), extension) !=
+         enabledOptionalExtensions.end();
 }
 
 std::string loaderVersion() {
@@ -227,7 +274,7 @@ void createContext(VulkanContext& ctx, const ContextOptions& options) {
   vkGetPhysicalDeviceProperties(ctx.physicalDevice, &props);
   ctx.timestampPeriodNs = props.limits.timestampPeriod;
   vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memoryProperties);
-  createDevice(ctx);  // also picks the queue family and reads its timestampValidBits
+  createDevice(ctx, options);  // also picks the queue family and reads its timestampValidBits
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -268,6 +315,7 @@ void destroyContext(VulkanContext& ctx) {
   }
   if (ctx.instance) vkDestroyInstance(ctx.instance, nullptr);
   ctx.device = VK_NULL_HANDLE;
+  ctx.enabledOptionalExtensions.clear();
   ctx.messenger = VK_NULL_HANDLE;
   ctx.instance = VK_NULL_HANDLE;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Headless Vulkan instance + device with one compute queue. Lavapipe is the default device so the
 // tool runs on any machine; --device picks another by index or name substring.
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -11,9 +12,20 @@ namespace aor {
 
 class OpCounter;
 
+struct DeviceInfo;
+
+// Device extensions the context can enable beyond its base set, with their features, when a run
+// asks for them (ContextOptions::optionalExtensions): the ray-query path of rtao.
+inline constexpr const char* kRayQueryExtension = "VK_KHR_ray_query";
+inline constexpr const char* kAccelerationStructureExtension = "VK_KHR_acceleration_structure";
+
 struct ContextOptions {
   std::string deviceSelector;  // empty: lavapipe if present, else the first device
   bool validate = false;       // Khronos validation with synchronization validation
+  // Optional extensions the command's work would use on the chosen device (a technique's settings
+  // decide, Technique::deviceExtensions); the context enables those the device offers with their
+  // features, and no others, so a run that does not need them keeps the base device. Empty: none.
+  std::function<std::vector<std::string>(const DeviceInfo& device)> optionalExtensions;
 };
 
 struct DeviceInfo {
@@ -41,6 +53,8 @@ struct VulkanContext {
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
   VkPhysicalDeviceMemoryProperties memoryProperties{};
   DeviceInfo info;
+  std::vector<std::string> enabledOptionalExtensions;  // those of ContextOptions::optionalExtensions enabled
+  bool enabled(const std::string& extension) const;
   double timestampPeriodNs = 1.0;
   uint32_t timestampValidBits = 64;
   // Set while a replay counts its passes' work (vk/op_counter.h): pipelines come from the counting

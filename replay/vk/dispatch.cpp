@@ -25,6 +25,7 @@ void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipelin
     throw std::logic_error(opCounts ? "a counter slot for a pipeline that does not count" : "a counting pipeline without a counter slot");
   std::vector<VkDescriptorImageInfo> images(bindings.size());
   std::vector<VkDescriptorBufferInfo> buffers(bindings.size() + 1);
+  std::vector<VkWriteDescriptorSetAccelerationStructureKHR> structures(bindings.size());
   std::vector<VkWriteDescriptorSet> writes;
   for (uint32_t i = 0; i < bindings.size(); ++i) {
     const BoundResource& r = bindings[i];
@@ -45,6 +46,14 @@ void recordDispatch(VulkanContext& vk, VkCommandBuffer cmd, const ComputePipelin
       case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
         buffers[i] = {r.buffer, r.offset, r.range};
         write.pBufferInfo = &buffers[i];
+        break;
+      case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR:
+        if (!r.accelerationStructure)
+          throw std::logic_error(fmt::format("binding {} ('{}') gets no acceleration structure", i, declared[i].name));
+        structures[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+        structures[i].accelerationStructureCount = 1;
+        structures[i].pAccelerationStructures = &r.accelerationStructure;
+        write.pNext = &structures[i];
         break;
       default:
         throw std::logic_error(fmt::format("binding {} ('{}') is a {}, which dispatches cannot bind", i, declared[i].name,

@@ -13,13 +13,15 @@ struct VulkanContext;
 struct ComputePipeline;
 
 // What one binding of the pipeline's set 0 receives: an image view in a layout (storage and sampled
-// images) or a buffer range (storage and uniform buffers), as the pipeline's reflected type says.
+// images), a buffer range (storage and uniform buffers) or an acceleration structure, as the
+// pipeline's reflected type says.
 struct BoundResource {
   VkImageView view = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // the layout the image is in when the dispatch runs
   VkSampler sampler = VK_NULL_HANDLE;                // samplers: null means the context's nearest sampler
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceSize offset = 0, range = VK_WHOLE_SIZE;
+  VkAccelerationStructureKHR accelerationStructure = VK_NULL_HANDLE;
 };
 
 struct DispatchGroups {

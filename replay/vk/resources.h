@@ -35,6 +35,8 @@ struct GpuBuffer {
   VkDeviceMemory memory = VK_NULL_HANDLE;  // set only when the buffer owns its memory
   void* mapped = nullptr;                  // host-visible buffers stay mapped
   VkDeviceSize size = 0;
+  // Set when the buffer holds an acceleration structure a shader binds (its owner made both).
+  VkAccelerationStructureKHR accelerationStructure = VK_NULL_HANDLE;
 };
 
 struct GpuMemory {

@@ -324,7 +324,8 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
           case Access::TransferWrite:
           case Access::ClearWrite: usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; break;
           case Access::UniformRead:
-          case Access::IndirectRead: ADD_FAILURE() << "buffer access on an image"; break;
+          case Access::IndirectRead:
+          case Access::AccelerationStructureRead: ADD_FAILURE() << "buffer access on an image"; break;
         }
       }
     }

@@ -86,21 +86,28 @@ class Flattener {
 
 }  // namespace
 
-RtaoBvh buildRtaoBvh(const CaptureGeometry& geometry) {
+std::vector<glm::uvec3> rtaoKeptTriangles(const CaptureGeometry& geometry) {
   std::vector<glm::uvec3> kept;
-  std::vector<RTCBuildPrimitive> primitives;
   for (size_t t = 0; t < geometry.triangleCount(); ++t) {
     glm::uvec3 ix(geometry.indices[3 * t], geometry.indices[3 * t + 1], geometry.indices[3 * t + 2]);
     glm::vec3 a = vertex(geometry, ix.x), b = vertex(geometry, ix.y), c = vertex(geometry, ix.z);
-    if (glm::length(glm::cross(b - a, c - a)) == 0.0f) continue;
+    if (glm::length(glm::cross(b - a, c - a)) != 0.0f) kept.push_back(ix);
+  }
+  return kept;
+}
+
+RtaoBvh buildRtaoBvh(const CaptureGeometry& geometry) {
+  std::vector<glm::uvec3> kept = rtaoKeptTriangles(geometry);
+  std::vector<RTCBuildPrimitive> primitives;
+  for (const glm::uvec3& ix : kept) {
+    glm::vec3 a = vertex(geometry, ix.x), b = vertex(geometry, ix.y), c = vertex(geometry, ix.z);
     glm::vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
     RTCBuildPrimitive p{};
     p.lower_x = lo.x, p.lower_y = lo.y, p.lower_z = lo.z;
     p.upper_x = hi.x, p.upper_y = hi.y, p.upper_z = hi.z;
     p.geomID = 0;
-    p.primID = uint32_t(kept.size());
+    p.primID = uint32_t(primitives.size());
     primitives.push_back(p);
-    kept.push_back(ix);
   }
   if (kept.empty()) throw std::invalid_argument("buildRtaoBvh: no triangle with a non-zero area");
   RTCDevice device = rtcNewDevice("threads=1");

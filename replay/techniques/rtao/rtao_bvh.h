@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "capture/obj_geometry.h"
 #include "rtao/rtao.h"
 
@@ -18,6 +20,10 @@ struct RtaoBvh {
   uint32_t depth = 0;  // levels from the root to the deepest leaf, root = 1
   uint64_t bytes() const { return nodes.size() * sizeof(nodes[0]) + triangles.size() * sizeof(triangles[0]); }
 };
+
+// The triangles both traversal paths trace (the BVH's leaves, the ray-query path's BLAS): the
+// geometry's, in its order, less the degenerate ones (zero area, never hit). Three vertex indices each.
+std::vector<glm::uvec3> rtaoKeptTriangles(const CaptureGeometry& geometry);
 
 // Deterministic: one build thread, so the same geometry gives the same bytes on every machine.
 // Degenerate triangles (zero area, never hit) are left out.

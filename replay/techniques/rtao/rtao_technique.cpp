@@ -1,7 +1,8 @@
 // Seed 003: ray-traced AO from the G-buffer, accumulated over frames (the nvpro-samples Vulkan
 // ray-tracing tutorial's "G-Buffer and Ambient Occlusion" extension), as a technique module. Its
 // rays traverse a BVH of the capture's geometry (format 1.1) in a compute shader, so it runs on
-// every Vulkan device. Seed 003 point by point: README.md in this folder.
+// every Vulkan device, or, where the device has ray queries, acceleration structures of the same
+// triangles with the same rays. Seed 003 point by point: README.md in this folder.
 #include <chrono>
 #include <cstring>
 #include <map>
@@ -15,6 +16,7 @@
 #include "graph/pass_context.h"
 #include "techniques/frame_builder.h"
 #include "techniques/registry.h"
+#include "techniques/rtao/rtao_accel.h"
 #include "techniques/rtao/rtao_bvh.h"
 #include "vk/context.h"
 #include "vk/resources.h"
@@ -33,16 +35,20 @@ constexpr const char* kNormalOffset = "normal_offset";
 constexpr const char* kMean = "rtao_mean";
 
 enum class Traversal { Auto, Compute, RayQuery };
-const std::vector<std::string> kRayQueryExtensions = {"VK_KHR_ray_query", "VK_KHR_acceleration_structure"};
+const std::vector<std::string> kRayQueryExtensions = {kRayQueryExtension, kAccelerationStructureExtension};
 
-// The BVH on the device (or only its sizes, for `aoreplay graph`), and the accumulation's length at
-// each frame replayed so far, for the next frame's weight and the report.
+// What the rays traverse: the BVH on the device (or only its sizes, for `aoreplay graph`), or the
+// ray-query path's acceleration structures; and the accumulation's length at each frame replayed so
+// far, for the next frame's weight and the report.
 struct RtaoState : TechniqueState {
   VulkanContext* vk = nullptr;
+  bool rayQuery = false;
   GpuBuffer nodes, triangles;
   uint64_t nodeBytes = 0, triangleBytes = 0;
   size_t nodeCount = 0, triangleCount = 0;
   uint32_t depth = 0;
+  RtaoAccel accel;
+  uint64_t graphTlasBytes = 0;  // without a device: the BLAS's input, standing in for the TLAS in `aoreplay graph`
   double buildMs = 0;
   std::map<uint32_t, uint32_t> accumulatedFrames;  // capture frame index -> frames in its mean
 
@@ -50,10 +56,22 @@ struct RtaoState : TechniqueState {
     if (!vk) return;
     destroyBuffer(*vk, nodes);
     destroyBuffer(*vk, triangles);
+    if (rayQuery) destroyRtaoAccel(*vk, accel);
   }
   std::vector<std::pair<std::string, double>> reportValues() const override {
-    return {{"bvh_nodes", double(nodeCount)},       {"bvh_triangles", double(triangleCount)},
-            {"bvh_depth", double(depth)},           {"bvh_bytes", double(nodeBytes + triangleBytes)},
+    if (rayQuery)
+      return {{"rayquery", 1.0},
+              {"as_triangles", double(accel.triangleCount)},
+              {"as_blas_bytes", double(accel.blasBytes)},
+              {"as_tlas_bytes", double(accel.tlasBytes)},
+              {"as_bytes", double(accel.bytes())},
+              {"as_build_bytes", double(accel.buildBytes)},
+              {"as_build_ms", buildMs}};
+    return {{"rayquery", 0.0},
+            {"bvh_nodes", double(nodeCount)},
+            {"bvh_triangles", double(triangleCount)},
+            {"bvh_depth", double(depth)},
+            {"bvh_bytes", double(nodeBytes + triangleBytes)},
             {"bvh_build_ms", buildMs}};
   }
 };
@@ -87,23 +105,69 @@ GpuBuffer uploadStorageBuffer(VulkanContext& vk, const void* data, uint64_t byte
 }
 
 constexpr graph::ImageState kUploaded{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr graph::ImageState kBuilt{VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                                   VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED};
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Whether the rays are traced with ray queries: asked for, or `auto` on a context that enabled them
+// (a run asks for them where the device offers them: rtaoDeviceExtensions). Without a device
+// (`aoreplay graph`) only an explicit rayquery does.
+bool usesRayQuery(const Settings& settings, const VulkanContext* vk) {
+  switch (Traversal(settings.i(kTraversal))) {
+    case Traversal::RayQuery: return true;
+    case Traversal::Compute: return false;
+    case Traversal::Auto: return vk && vk->enabled(kRayQueryExtension) && vk->enabled(kAccelerationStructureExtension);
+  }
+  return false;
+}
+
+// The compute path's BVH: built on the CPU (the build time is Embree's and the flattening), then
+// uploaded once.
+void prepareBvh(RtaoState& state, const CaptureGeometry& geometry, VulkanContext* vk) {
+  auto start = std::chrono::steady_clock::now();
+  RtaoBvh bvh = buildRtaoBvh(geometry);
+  state.buildMs = msSince(start);
+  state.nodeCount = bvh.nodes.size();
+  state.triangleCount = bvh.triangles.size();
+  state.depth = bvh.depth;
+  state.nodeBytes = bvh.nodes.size() * sizeof(bvh.nodes[0]);
+  state.triangleBytes = bvh.triangles.size() * sizeof(bvh.triangles[0]);
+  if (vk) {
+    state.nodes = uploadStorageBuffer(*vk, bvh.nodes.data(), state.nodeBytes);
+    state.triangles = uploadStorageBuffer(*vk, bvh.triangles.data(), state.triangleBytes);
+  }
+}
+
+// The ray-query path's BLAS and TLAS, built on the device (the build time is the inputs' upload and
+// the device's builds, to their end).
+void prepareAccel(RtaoState& state, const CaptureGeometry& geometry, VulkanContext* vk) {
+  if (!vk) {
+    state.graphTlasBytes = geometry.positions.size() * sizeof(float) + rtaoKeptTriangles(geometry).size() * 3 * sizeof(uint32_t);
+    return;
+  }
+  for (const auto& e : kRayQueryExtensions)
+    if (!vk->enabled(e))
+      throw NoDeviceError(fmt::format("traversal=rayquery: device '{}' offers {} but this context did not enable it (the "
+                                      "device lacks one of the features rayQuery, accelerationStructure, "
+                                      "bufferDeviceAddress, or the command does not enable optional extensions)",
+                                      vk->info.name, e));
+  auto start = std::chrono::steady_clock::now();
+  state.accel = buildRtaoAccel(*vk, geometry);
+  state.buildMs = msSince(start);
+}
 
 std::unique_ptr<TechniqueState> prepareRtao(const ReplaySetup& setup) {
   auto state = std::make_unique<RtaoState>();
   CaptureGeometry geometry = loadGeometry(setup.capture);  // InputError naming the OBJ's line
-  auto start = std::chrono::steady_clock::now();
-  RtaoBvh bvh = buildRtaoBvh(geometry);
-  state->buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  state->nodeCount = bvh.nodes.size();
-  state->triangleCount = bvh.triangles.size();
-  state->depth = bvh.depth;
-  state->nodeBytes = bvh.nodes.size() * sizeof(bvh.nodes[0]);
-  state->triangleBytes = bvh.triangles.size() * sizeof(bvh.triangles[0]);
-  if (setup.vk) {
-    state->vk = setup.vk;
-    state->nodes = uploadStorageBuffer(*setup.vk, bvh.nodes.data(), state->nodeBytes);
-    state->triangles = uploadStorageBuffer(*setup.vk, bvh.triangles.data(), state->triangleBytes);
-  }
+  state->rayQuery = usesRayQuery(setup.settings, setup.vk);
+  if (state->rayQuery)
+    prepareAccel(*state, geometry, setup.vk);
+  else
+    prepareBvh(*state, geometry, setup.vk);
+  state->vk = setup.vk;
   return state;
 }
 
@@ -119,10 +183,14 @@ std::vector<std::string> missingRtaoExtensions(const Settings& settings, const D
   std::vector<std::string> missing;
   for (const auto& e : kRayQueryExtensions)
     if (!device.hasExtension(e)) missing.push_back(e);
-  if (missing.empty())
-    throw InputError("", std::nullopt, kTraversal,
-                     "traversal=rayquery is not implemented yet (the device has the extensions); use traversal=compute");
   return missing;
+}
+
+// The ray-query path's extensions, for the context to enable where the device offers them, unless
+// the settings rule that path out.
+std::vector<std::string> rtaoDeviceExtensions(const Settings& settings, const DeviceInfo&) {
+  if (Traversal(settings.i(kTraversal)) == Traversal::Compute) return {};
+  return kRayQueryExtensions;
 }
 
 // The seed's updateFrame: any change of the camera matrix (or of the projection, the seed's fov)
@@ -173,15 +241,30 @@ shader::RtaoConstants traceConstants(const FrameBuilder& frame, const Settings& 
   return c;
 }
 
+// What the trace pass traverses, imported into the frame's graph: the BVH's two storage buffers, or
+// the TLAS (which refers to the BLAS; both were built and waited for in prepare).
+struct TraceScene {
+  std::vector<graph::ResourceId> buffers;
+  graph::Access access = graph::Access::StorageRead;
+};
+
+TraceScene importScene(graph::RenderGraph& g, const RtaoState& state) {
+  auto importOne = [&](const char* name, uint64_t bytes, const GpuBuffer& buffer, const graph::ImageState& after) {
+    return state.vk ? g.importExternalBuffer(name, {bytes}, buffer, after) : g.importBuffer(name, {bytes});
+  };
+  if (state.rayQuery)
+    return {{importOne("rtao_tlas", state.vk ? state.accel.tlasBytes : state.graphTlasBytes, state.accel.tlas, kBuilt)},
+            graph::Access::AccelerationStructureRead};
+  return {{importOne("bvh_nodes", state.nodeBytes, state.nodes, kUploaded),
+           importOne("bvh_triangles", state.triangleBytes, state.triangles, kUploaded)},
+          graph::Access::StorageRead};
+}
+
 void addRtaoPasses(FrameBuilder& frame, const Settings& settings) {
   auto& state = frame.state<RtaoState>();
   Accumulation a = accumulationOf(frame, settings, state);
   auto& g = frame.graph();
-  graph::ResourceId nodes = state.vk ? g.importExternalBuffer("bvh_nodes", {state.nodeBytes}, state.nodes, kUploaded)
-                                     : g.importBuffer("bvh_nodes", {state.nodeBytes});
-  graph::ResourceId triangles = state.vk
-                                    ? g.importExternalBuffer("bvh_triangles", {state.triangleBytes}, state.triangles, kUploaded)
-                                    : g.importBuffer("bvh_triangles", {state.triangleBytes});
+  TraceScene scene = importScene(g, state);
   auto size = frame.size();
   graph::ImageDesc meanDesc{size.x, size.y, VK_FORMAT_R32_SFLOAT};
   graph::ResourceId previous = graph::kNoResource, mean;
@@ -199,24 +282,26 @@ void addRtaoPasses(FrameBuilder& frame, const Settings& settings) {
                                                   {uint32_t(shader::kRtaoSpecDistanceBased), settings.b(kDistanceBased) ? 1u : 0u},
                                                   {uint32_t(shader::kRtaoSpecWorldNormals), worldNormals ? 1u : 0u}};
   shader::RtaoConstants c = traceConstants(frame, settings, a);
+  // Bindings in the shader's order: distance, normals, the scene's buffers, last frame's mean, the mean.
+  std::vector<Bind> bindings = {distance, normals};
+  bindings.insert(bindings.end(), scene.buffers.begin(), scene.buffers.end());
+  if (previous != graph::kNoResource) bindings.push_back(previous);
+  bindings.push_back(mean);
+  std::string shader = fmt::format("rtao/rtao_{}{}", previous != graph::kNoResource ? "accumulate" : "first",
+                                   state.rayQuery ? "_rayquery" : "");
   auto& pipelines = frame.pipelines();
   g.addPass(
       "rtao",
       [&](graph::PassBuilder& b) {
         b.read(distance, graph::Access::StorageRead);
         b.read(normals, graph::Access::StorageRead);
-        b.read(nodes, graph::Access::StorageRead);
-        b.read(triangles, graph::Access::StorageRead);
+        for (graph::ResourceId buffer : scene.buffers) b.read(buffer, scene.access);
         if (previous != graph::kNoResource) b.read(previous, graph::Access::StorageRead);
         b.write(mean);
       },
-      [&pipelines, specialization, c, distance, normals, nodes, triangles, previous, mean](graph::PassContext& ctx) {
-        if (previous != graph::kNoResource)
-          dispatchCompute(ctx, pipelines.get("rtao/rtao_accumulate", specialization),
-                          {distance, normals, nodes, triangles, previous, mean}, &c, uint32_t(c.size.x), uint32_t(c.size.y));
-        else
-          dispatchCompute(ctx, pipelines.get("rtao/rtao_first", specialization), {distance, normals, nodes, triangles, mean},
-                          &c, uint32_t(c.size.x), uint32_t(c.size.y));
+      [&pipelines, specialization, c, bindings, shader](graph::PassContext& ctx) {
+        const ComputePipeline& pipeline = pipelines.get(shader, specialization);
+        dispatchCompute(ctx, pipeline, bindings, &c, sizeof(c), groupsFor(pipeline, uint32_t(c.size.x), uint32_t(c.size.y)));
       });
   frame.reportValue("accumulated_frames", a.frames);
   frame.reportValue("accumulated_spp", double(a.frames) * settings.i(kSamples));
@@ -239,7 +324,8 @@ Technique makeRtao() {
   t.name = "rtao";
   t.seed = "003 ray-traced AO from the G-buffer, accumulated over frames";
   t.summary = "cosine-weighted AO rays from the depth buffer's surfaces against the capture's geometry (a BVH "
-              "traversed in a compute shader), running mean over frames while the camera is still";
+              "traversed in a compute shader, or ray queries where the device has them), running mean over frames "
+              "while the camera is still";
   t.parameters = {
       radiusParameter(2.0),
       intParameter(kSamples, 4, 1, 1024, "rays per pixel per frame (AoControl::rtao_samples)"),
@@ -251,8 +337,9 @@ Technique makeRtao() {
                     "running mean over frames, restarted on any camera change, a cut, a size or settings change"),
       intParameter(kMaxFrames, 0, 0, 1000000, "frames a mean accumulates at most, then it is kept (0 = no cap)"),
       enumParameter(kTraversal, {"auto", "compute", "rayquery"}, int(Traversal::Auto),
-                    "BVH traversal: compute (a compute-shader BVH, every device), rayquery (VK_KHR_ray_query; exit 3 "
-                    "without it; not implemented yet), auto (compute)"),
+                    "ray traversal: compute (a compute-shader BVH, every device), rayquery (acceleration structures "
+                    "and ray queries; exit 3 on a device without VK_KHR_ray_query and VK_KHR_acceleration_structure), "
+                    "auto (rayquery where the device has both, else compute)"),
       floatParameter(kNormalOffset, 1e-4, 0.0, 0.1,
                      "ray origins move this many world units per unit of view distance (at least 1) along the normal "
                      "before OffsetRay: the depth buffer's position is only within its precision of the surface"),
@@ -263,6 +350,7 @@ Technique makeRtao() {
   t.withoutHistory = rtaoWithoutAccumulation;
   t.checkCapture = checkRtaoCapture;
   t.missingDeviceExtensions = missingRtaoExtensions;
+  t.deviceExtensions = rtaoDeviceExtensions;
   t.prepare = prepareRtao;
   return t;
 }
