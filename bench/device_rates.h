@@ -41,7 +41,7 @@ inline constexpr int kScatteredFetchSpreads[] = {8, 32, 128};
 struct DeviceRates {
   double copyBytesPerMs = 0;     // the fastest of `copies`
   double texelFetchesPerMs = 0;
-  double dispatchMs = 0;         // one dispatch of one workgroup, the least any pass can take
+  double dispatchMs = 0;         // one dispatch of one workgroup in a chain of them, the least any pass can take
   uint64_t copyBytes = 0;        // the size the fastest copy ran at
   CopyPath copyPath = CopyPath::Transfer;  // and its path
   std::vector<CopyRate> copies;  // 1 MiB, 4 MiB, ... up to the largest asked, each by both paths

@@ -21,7 +21,7 @@ PassFloor passFloor(const std::string& config, const DispatchCounts& counts, con
 void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const DeviceRates* rates) {
   if (rates)
     fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, fastest: {} at {} MiB), texelFetch {:.1f} G/s (R32F, {}x{}), "
-               "empty dispatch {:.4f} ms\n",
+               "empty dispatch in a chain {:.4f} ms\n",
                rates->copyBytesPerMs * 1e-6, copyPathName(rates->copyPath), rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
                rates->fetchSize.first, rates->fetchSize.second, rates->dispatchMs);
   if (rates)

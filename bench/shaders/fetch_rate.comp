@@ -15,7 +15,8 @@ layout(push_constant) uniform Push { FetchRateConstants pc; };
 layout(set = 0, binding = 0) uniform sampler2D source;
 layout(set = 0, binding = 1, r32f) uniform writeonly image2D target;
 
-ivec2 neighbourhoodTap(int tap) { return ivec2(tap & 7, (tap >> 3) & 7) - ivec2(4); }
+// The source is the grid plus kFetchRatePad texels right and below: the neighbourhood needs no clamp.
+ivec2 neighbourhoodTap(int tap) { return ivec2(tap & 7, (tap >> 3) & 7); }
 
 // Tap k at distance spread x (k + 1) / taps, its angle the pixel's noise plus k golden angles.
 ivec2 scatteredTap(ivec2 pixel, int tap) {
@@ -30,9 +31,11 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= pc.size.x || pixel.y >= pc.size.y) return;
   float sum = 0.0f;
-  for (int tap = 0; tap < kFetchRateTaps; ++tap) {
-    ivec2 offset = kSpread == 0 ? neighbourhoodTap(tap) : scatteredTap(pixel, tap);
-    sum += texelFetch(source, clamp(pixel + offset, ivec2(0), pc.size - 1), 0).r;
+  if (kSpread == 0) {
+    for (int tap = 0; tap < kFetchRateTaps; ++tap) sum += texelFetch(source, pixel + neighbourhoodTap(tap), 0).r;
+  } else {
+    for (int tap = 0; tap < kFetchRateTaps; ++tap)
+      sum += texelFetch(source, clamp(pixel + scatteredTap(pixel, tap), ivec2(0), pc.size - 1), 0).r;
   }
   imageStore(target, pixel, vec4(sum));
 }

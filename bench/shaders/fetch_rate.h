@@ -4,6 +4,7 @@
 #include "../../shaders/common/shared_begin.h"
 
 AOR_CONST int kFetchRateTaps = 64;
+AOR_CONST int kFetchRatePad = 8;  // source texels beyond the grid, right and below (the 8x8 neighbourhood)
 
 struct FetchRateConstants {
   ivec2 size;

@@ -48,9 +48,13 @@ float mipFilter(float d0, float d1, float d2, float d3) {
 
 // XeGTAO writes every texel of the 16x16 tile; a storage write outside the image is undefined in
 // Vulkan, so each is bounded by its level's size (and a level the chain lacks is bound to its last
-// and never written).
+// and never written). A workgroup whose tile lies inside the frame with all five levels present
+// (every one but the right and bottom edges' at 1080p) stores without the tests: `wholeTile` is
+// the same for the whole workgroup, so the branch costs nothing where XeGTAO has none.
+bool wholeTile;
 // One vector comparison, no short-circuit: glslang turns each `&&` into a branch.
 bool inLevel(int mip, ivec2 texel) {
+  if (wholeTile) return true;
   ivec2 size = max(pc.viewportSize >> mip, ivec2(1));
   return all(lessThan(ivec3(texel, mip), ivec3(size, mipLevels)));
 }
@@ -69,6 +73,8 @@ bool reduceStep(uvec2 thread, uint stride, out float value) {
 
 void main() {
   setMipFilterFalloff();
+  ivec2 tileEnd = ivec2(gl_WorkGroupID.xy + 1u) * int(2u * kXeGtaoWorkgroupSize);
+  wholeTile = all(lessThanEqual(ivec3(tileEnd, kXeGtaoDepthMipLevels), ivec3(pc.viewportSize, mipLevels)));
   uvec2 base = gl_GlobalInvocationID.xy;
   uvec2 thread = gl_LocalInvocationID.xy;
   ivec2 pixel = ivec2(base * 2u);
