@@ -31,12 +31,9 @@ void main() {
   CacaoConstants c = cacaoLayers[0];
   ivec2 tid = ivec2(gl_GlobalInvocationID.xy);
   ivec2 gtid = ivec2(gl_LocalInvocationID.xy);
-  int scale = kDownsampled ? 4 : 2;
-  int step = kDownsampled ? 2 : 1;
-  ivec2 last = textureSize(depthIn, 0) - 1;
+  vec4 phases = cacaoGatherPhases(depthIn, tid, kDownsampled);
   for (int layer = 0; layer < kCacaoLayers; ++layer) {
-    ivec2 p = min(scale * tid + step * ivec2(layer % 2, layer / 2), last);
-    float z = cacaoViewDepth(c, texelFetch(depthIn, p, 0).x);
+    float z = cacaoViewDepth(c, phases[layer]);
     scratch[layer][gtid.x][gtid.y] = z;
     storeIfInside(0, tid, layer, z);
   }
