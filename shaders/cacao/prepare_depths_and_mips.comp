@@ -47,7 +47,8 @@ void main() {
                                         scratch[layer][at.x + 1][at.y], scratch[layer][at.x + 1][at.y + 1]),
                                    c.effectRadius);
   storeIfInside(1, outputCoord, layer, avg);
-  barrier();  // every thread has read its block before any overwrites one
+  // In place, as FidelityFX: the block's first cell is read by this thread only, so no barrier
+  // before the write (one barrier a level, as FidelityFX's).
   scratch[layer][at.x][at.y] = avg;
 
   for (int level = 2; level <= 3; ++level) {
@@ -60,8 +61,7 @@ void main() {
                                       scratch[layer][at.x + spacing][at.y], scratch[layer][at.x + spacing][at.y + spacing]),
                                  c.effectRadius);
       storeIfInside(level, outputCoord, layer, avg);
+      scratch[layer][at.x][at.y] = avg;
     }
-    barrier();
-    if (alive) scratch[layer][at.x][at.y] = avg;
   }
 }
