@@ -36,10 +36,6 @@ vec3 normalAt(ivec2 p, int layer, vec2 size) {
   return texelFetch(normals, ivec3(p, layer), 0).xyz;
 }
 
-float depthAt(ivec2 p, int layer) {
-  ivec2 last = textureSize(viewDepths, 0).xy - 1;
-  return texelFetch(viewDepths, ivec3(clamp(p, ivec2(0), last), layer), 0).x;
-}
 
 struct Centre {
   vec3 position;  // pulled towards the camera by DepthPrecisionOffsetMod
@@ -101,9 +97,16 @@ void main() {
 
   Centre p;
   p.depthBufferUv = (svPos + 0.5) * c.deinterleavedDepthBufferInverseDimensions + c.deinterleavedDepthBufferNormalisedOffset;
-  float pixZ = depthAt(coord, layer);
-  float pixLZ = depthAt(coord + ivec2(-1, 0), layer), pixRZ = depthAt(coord + ivec2(1, 0), layer);
-  float pixTZ = depthAt(coord + ivec2(0, -1), layer), pixBZ = depthAt(coord + ivec2(0, 1), layer);
+  // The centre and its four neighbours, clamped, from two gathers as FidelityFX's two GatherReds,
+  // taken at the corners of the 2x2 blocks (up-left and down-right of the centre) instead of at
+  // the centre texel's middle, so rounding cannot move the footprints. x, y, z, w are texels
+  // (0, 1), (1, 1), (1, 0), (0, 0) of a footprint.
+  vec2 depthSize = vec2(textureSize(viewDepths, 0).xy);
+  vec4 valuesUL = textureGather(viewDepths, vec3(vec2(coord) / depthSize, float(layer)));
+  vec4 valuesBR = textureGather(viewDepths, vec3(vec2(coord + 1) / depthSize, float(layer)));
+  float pixZ = valuesUL.y;
+  float pixLZ = valuesUL.x, pixRZ = valuesBR.z;
+  float pixTZ = valuesUL.z, pixBZ = valuesBR.x;
 
   vec2 normalizedScreenPos = (svPos + 0.5) * c.ssaoBufferInverseDimensions;
   p.position = cacaoNdcToView(c, normalizedScreenPos, pixZ);

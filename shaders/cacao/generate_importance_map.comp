@@ -14,15 +14,18 @@ void main() {
   CacaoConstants c = cacaoLayers[0];
   ivec2 tid = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(vec2(tid), c.importanceMapDimensions))) return;
-  ivec2 last = textureSize(baseSsao, 0).xy - 1;
+  // The 2x2 block of each layer in one gather at its shared corner (as FidelityFX's GatherRed, but
+  // at the corner rather than a texel centre, so rounding cannot move the footprint), clamped.
+  vec2 uv = vec2(2 * tid + 1) / vec2(textureSize(baseSsao, 0).xy);
   float minV = 1.0, maxV = 0.0;
-  for (int layer = 0; layer < kCacaoLayers; ++layer)
+  for (int layer = 0; layer < kCacaoLayers; ++layer) {
+    vec4 vals = textureGather(baseSsao, vec3(uv, float(layer)));
     for (int i = 0; i < 4; ++i) {
-      ivec2 q = min(2 * tid + ivec2(i % 2, i / 2), last);  // the 2x2 a gather at the texel's corner reads, clamped
-      float v = c.effectShadowStrength * texelFetch(baseSsao, ivec3(q, layer), 0).x;
+      float v = c.effectShadowStrength * vals[i];
       v = pow(cacaoSaturate(1.0 - v), c.effectShadowPow);
       maxV = max(maxV, v);
       minV = min(minV, v);
     }
+  }
   imageStore(importanceOut, tid, vec4(pow(cacaoSaturate((maxV - minV) * 2.0), 0.8)));
 }

@@ -2,7 +2,7 @@
 // CACAO prepare depths without MIPs: FFX_CACAO_Prepare{Native,Downsampled}Depths (low) and
 // FFX_CACAO_Prepare{Native,Downsampled}DepthsHalf (lowest: layers 0 and 3 only). Each thread
 // writes one texel of each layer: the 2x2 phases of a 2x2 block (native) or of a 4x4 block's
-// even pixels (downsampled), as view depth.
+// even pixels (downsampled), as view depth (cacaoGatherPhases).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "cacao_common.glsl"
@@ -17,14 +17,10 @@ void main() {
   CacaoConstants c = cacaoLayers[0];
   ivec2 tid = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(vec2(tid), c.deinterleavedDepthBufferDimensions))) return;
-  int scale = kDownsampled ? 4 : 2;
-  int step = kDownsampled ? 2 : 1;
-  ivec2 base = scale * tid;
-  ivec2 last = textureSize(depthIn, 0) - 1;
-  // Layer k holds phase (k % 2, k / 2); texelFetch clamped as the point-clamp sampler is.
+  // Layer k holds phase (k % 2, k / 2), clamped at the edge as the point-clamp sampler is.
+  vec4 phases = cacaoGatherPhases(depthIn, tid, kDownsampled);
   for (int layer = 0; layer < kCacaoLayers; ++layer) {
     if (kHalf && (layer == 1 || layer == 2)) continue;  // discarded at lowest: top right, bottom left
-    ivec2 p = min(base + step * ivec2(layer % 2, layer / 2), last);
-    imageStore(depthsOut, ivec3(tid, layer), vec4(cacaoViewDepth(c, texelFetch(depthIn, p, 0).x)));
+    imageStore(depthsOut, ivec3(tid, layer), vec4(cacaoViewDepth(c, phases[layer])));
   }
 }

@@ -31,12 +31,9 @@ void main() {
   CacaoConstants c = cacaoLayers[0];
   ivec2 tid = ivec2(gl_GlobalInvocationID.xy);
   ivec2 gtid = ivec2(gl_LocalInvocationID.xy);
-  int scale = kDownsampled ? 4 : 2;
-  int step = kDownsampled ? 2 : 1;
-  ivec2 last = textureSize(depthIn, 0) - 1;
+  vec4 phases = cacaoGatherPhases(depthIn, tid, kDownsampled);
   for (int layer = 0; layer < kCacaoLayers; ++layer) {
-    ivec2 p = min(scale * tid + step * ivec2(layer % 2, layer / 2), last);
-    float z = cacaoViewDepth(c, texelFetch(depthIn, p, 0).x);
+    float z = cacaoViewDepth(c, phases[layer]);
     scratch[layer][gtid.x][gtid.y] = z;
     storeIfInside(0, tid, layer, z);
   }
@@ -50,7 +47,8 @@ void main() {
                                         scratch[layer][at.x + 1][at.y], scratch[layer][at.x + 1][at.y + 1]),
                                    c.effectRadius);
   storeIfInside(1, outputCoord, layer, avg);
-  barrier();  // every thread has read its block before any overwrites one
+  // In place, as FidelityFX: the block's first cell is read by this thread only, so no barrier
+  // before the write (one barrier a level, as FidelityFX's).
   scratch[layer][at.x][at.y] = avg;
 
   for (int level = 2; level <= 3; ++level) {
@@ -63,8 +61,7 @@ void main() {
                                       scratch[layer][at.x + spacing][at.y], scratch[layer][at.x + spacing][at.y + spacing]),
                                  c.effectRadius);
       storeIfInside(level, outputCoord, layer, avg);
+      scratch[layer][at.x][at.y] = avg;
     }
-    barrier();
-    if (alive) scratch[layer][at.x][at.y] = avg;
   }
 }
