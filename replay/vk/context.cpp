@@ -295,6 +295,26 @@ void submitAndWait(const VulkanContext& ctx, VkCommandBuffer cmd, VkFence fence)
   VK_CHECK(vkResetFences(ctx.device, 1, &fence));
 }
 
+void runOneTimeCommands(const VulkanContext& ctx, const std::function<void(VkCommandBuffer)>& record) {
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = ctx.commandPool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, &cmd));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  record(cmd);
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateFence(ctx.device, &fenceInfo, nullptr, &fence));
+  submitAndWait(ctx, cmd, fence);
+  vkDestroyFence(ctx.device, fence, nullptr);
+  vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &cmd);
+}
+
 double timestampDeltaMs(const VulkanContext& ctx, uint64_t from, uint64_t to) {
   uint64_t mask = ctx.timestampValidBits >= 64 ? ~0ull : ((1ull << ctx.timestampValidBits) - 1);
   return double((to - from) & mask) * ctx.timestampPeriodNs * 1e-6;

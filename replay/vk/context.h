@@ -73,6 +73,9 @@ std::string loaderVersion();
 // Runs one recorded command buffer on the context's queue and waits for it; `fence` is unsignalled
 // before and after.
 void submitAndWait(const VulkanContext& context, VkCommandBuffer cmd, VkFence fence);
+// Records `record` into a one-time command buffer of the context's pool, runs it and waits: set-up
+// work (uploads, acceleration-structure builds) that has finished when this returns.
+void runOneTimeCommands(const VulkanContext& context, const std::function<void(VkCommandBuffer)>& record);
 // Milliseconds between two timestamp-query values, wrapping within the queue's valid bits.
 double timestampDeltaMs(const VulkanContext& context, uint64_t from, uint64_t to);
 // Throws NoDeviceError when no device (or none matching the selector) exists.

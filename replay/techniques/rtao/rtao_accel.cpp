@@ -103,35 +103,21 @@ VkDeviceSize scratchAlignment(const VulkanContext& vk) {
 // the TLAS; submits them and waits.
 void runBuilds(VulkanContext& vk, const AccelFunctions& fn, VkAccelerationStructureBuildGeometryInfoKHR& blas,
                uint32_t triangles, VkAccelerationStructureBuildGeometryInfoKHR& tlas) {
-  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  alloc.commandPool = vk.commandPool;
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VK_CHECK(vkAllocateCommandBuffers(vk.device, &alloc, &cmd));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-  VkAccelerationStructureBuildRangeInfoKHR blasRange{triangles, 0, 0, 0}, tlasRange{1, 0, 0, 0};
-  const VkAccelerationStructureBuildRangeInfoKHR* blasRanges = &blasRange;
-  const VkAccelerationStructureBuildRangeInfoKHR* tlasRanges = &tlasRange;
-  fn.build(cmd, 1, &blas, &blasRanges);
-  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
-  barrier.srcAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  barrier.dstAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
-  fn.build(cmd, 1, &tlas, &tlasRanges);
-  VK_CHECK(vkEndCommandBuffer(cmd));
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateFence(vk.device, &fenceInfo, nullptr, &fence));
-  submitAndWait(vk, cmd, fence);
-  vkDestroyFence(vk.device, fence, nullptr);
-  vkFreeCommandBuffers(vk.device, vk.commandPool, 1, &cmd);
+  runOneTimeCommands(vk, [&](VkCommandBuffer cmd) {
+    VkAccelerationStructureBuildRangeInfoKHR blasRange{triangles, 0, 0, 0}, tlasRange{1, 0, 0, 0};
+    const VkAccelerationStructureBuildRangeInfoKHR* blasRanges = &blasRange;
+    const VkAccelerationStructureBuildRangeInfoKHR* tlasRanges = &tlasRange;
+    fn.build(cmd, 1, &blas, &blasRanges);
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR;
+    barrier.srcAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+    barrier.dstAccessMask = VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+    fn.build(cmd, 1, &tlas, &tlasRanges);
+  });
 }
 
 }  // namespace

@@ -82,24 +82,10 @@ GpuBuffer uploadStorageBuffer(VulkanContext& vk, const void* data, uint64_t byte
   GpuBuffer staging = createHostBuffer(vk, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   std::memcpy(staging.mapped, data, bytes);
   GpuBuffer buffer = createDeviceBuffer(vk, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  alloc.commandPool = vk.commandPool;
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VK_CHECK(vkAllocateCommandBuffers(vk.device, &alloc, &cmd));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-  VkBufferCopy region{0, 0, bytes};
-  vkCmdCopyBuffer(cmd, staging.buffer, buffer.buffer, 1, &region);
-  VK_CHECK(vkEndCommandBuffer(cmd));
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateFence(vk.device, &fenceInfo, nullptr, &fence));
-  submitAndWait(vk, cmd, fence);
-  vkDestroyFence(vk.device, fence, nullptr);
-  vkFreeCommandBuffers(vk.device, vk.commandPool, 1, &cmd);
+  runOneTimeCommands(vk, [&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, staging.buffer, buffer.buffer, 1, &region);
+  });
   destroyBuffer(vk, staging);
   return buffer;
 }
