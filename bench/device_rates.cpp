@@ -101,9 +101,9 @@ void toGeneral(VkCommandBuffer cmd, VkImage image, VkPipelineStageFlags2 dstStag
 }
 
 // The fetch kernel over a width x height grid, its taps `spread` pixels out at most (0: the 8x8
-// neighbourhood): milliseconds per dispatch. A 1x1 grid (one workgroup, one live invocation)
-// times what a dispatch costs before it does any work.
-// `chain` dispatches back to back (a barrier between each two, as a graph puts between passes).
+// neighbourhood), `chain` dispatches back to back (a barrier between each two, as a graph puts
+// between passes): milliseconds for the chain. On a 1x1 grid (one workgroup, one live invocation)
+// it times what dispatches cost before they do any work.
 double fetchMs(Rig& rig, std::pair<int, int> size, int reps, double warmupMs, int spread = 0, int chain = 1) {
   VulkanContext& vk = rig.vk;
   auto [width, height] = size;

@@ -1,10 +1,9 @@
 #pragma once
 // A device's measured rates, the denominators of a pass's floor (bench/floor.h): the bandwidth of
 // buffer copies (vkCmdCopyBuffer and a compute shader's copy, bytes read plus bytes written per
-// ms) at sizes from 1 MiB up to
-// the largest asked, the rate of texelFetch from an R32F image in cache (fetch_rate.comp), and the
-// time of one dispatch of a single workgroup; each the median of `reps` timed runs after a
-// warm-up, from timestamp queries.
+// ms) at sizes from 1 MiB up to the largest asked, the rate of texelFetch from an R32F image in
+// cache (fetch_rate.comp), and the time one empty dispatch adds to a chain of them; each from the
+// median of `reps` timed runs after a warm-up, from timestamp queries.
 //
 // Why several copy sizes: a floor is the least time the work can take, and a pass's images are
 // often still in the last-level cache from the pass that wrote them (an H200's L2 holds 50 MB, a

@@ -19,17 +19,16 @@ PassFloor passFloor(const std::string& config, const DispatchCounts& counts, con
 }
 
 void printFloorTable(std::FILE* out, const std::vector<PassFloor>& rows, const DeviceRates* rates) {
-  if (rates)
+  if (rates) {
     fmt::print(out, "floor rates: copy {:.1f} GB/s (read + written, fastest: {} at {} MiB), texelFetch {:.1f} G/s (R32F, {}x{}), "
                "empty dispatch in a chain {:.4f} ms\n",
                rates->copyBytesPerMs * 1e-6, copyPathName(rates->copyPath), rates->copyBytes >> 20, rates->texelFetchesPerMs * 1e-6,
                rates->fetchSize.first, rates->fetchSize.second, rates->dispatchMs);
-  if (rates)
     for (const auto& f : rates->scatteredFetches)
       fmt::print(out, "  texelFetch scattered to {:>3} px: {:.1f} G/s (not in the floor)\n", f.spread, f.texelFetchesPerMs * 1e-6);
-  if (rates)
     for (const auto& c : rates->copies)
       fmt::print(out, "  copy {:>5} MiB, {:<15}: {:.1f} GB/s\n", c.bytes >> 20, copyPathName(c.path), c.bytesPerMs * 1e-6);
+  }
   fmt::print(out, "{:<34} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9} {:>9} {:>7} {}\n", "config", "pass", "tex reads",
              "stores", "MB read", "MB written", "ms", "floor ms", "ratio", "bound by");
   for (const auto& r : rows) {
