@@ -30,12 +30,14 @@ int cacaoLayerOf(uint z, bool twoLayers) { return twoLayers ? int(z) * 3 : int(z
 // (as FidelityFX's GatherRed; at the corner, not a texel centre, so rounding cannot move the
 // footprint; 0.8 -> 1.0x of four texelFetch's time on lavapipe); downsampled, the 4x4 block's
 // even pixels by four nearest samples at their centres, clamped by the sampler (as FidelityFX's
-// point-clamp samples; 0.8 -> 1.0x of four clamped texelFetch).
-vec4 cacaoGatherPhases(sampler2D depth, ivec2 p, bool downsampled) {
-  vec2 size = vec2(textureSize(depth, 0));
+// point-clamp samples; 0.8 -> 1.0x of four clamped texelFetch). invSize is the depth buffer's
+// inverse size from the constants (DepthBufferInverseDimensions): a multiply instead of a
+// textureSize query (a texture-unit instruction on NVIDIA) and divides; at a corner or a centre the
+// coordinate's last bits cannot move the footprint, so the same texels are read.
+vec4 cacaoGatherPhases(sampler2D depth, ivec2 p, bool downsampled, vec2 invSize) {
   // textureGather's x, y, z, w are texels (0, 1), (1, 1), (1, 0), (0, 0) of the footprint.
-  if (!downsampled) return textureGather(depth, vec2(2 * p + 1) / size).wzxy;
+  if (!downsampled) return textureGather(depth, vec2(2 * p + 1) * invSize).wzxy;
   vec2 centre = vec2(4 * p) + 0.5;
-  return vec4(textureLod(depth, centre / size, 0.0).x, textureLod(depth, (centre + vec2(2, 0)) / size, 0.0).x,
-              textureLod(depth, (centre + vec2(0, 2)) / size, 0.0).x, textureLod(depth, (centre + vec2(2, 2)) / size, 0.0).x);
+  return vec4(textureLod(depth, centre * invSize, 0.0).x, textureLod(depth, (centre + vec2(2, 0)) * invSize, 0.0).x,
+              textureLod(depth, (centre + vec2(0, 2)) * invSize, 0.0).x, textureLod(depth, (centre + vec2(2, 2)) * invSize, 0.0).x);
 }

@@ -17,24 +17,23 @@ layout(set = 0, binding = 2) uniform sampler2DArray normals;     // RGBA8_SNORM,
 layout(set = 0, binding = 3, std430) readonly buffer LoadCounter { uint loadCounter; };
 layout(set = 0, binding = 4) uniform sampler2D importanceMap;    // R8, bilinear
 layout(set = 0, binding = 5) uniform sampler2DArray baseSsao;    // RG8: the base pass's obscurance, weight / 20
-layout(set = 0, binding = 6) uniform writeonly image2DArray ssaoOut;
+layout(set = 0, binding = 6, rg8) uniform writeonly image2DArray ssaoOut;
 #ifdef CACAO_COUNT_TAPS
 // --debug adaptive_taps: extra taps and pixels where the importance map is >= 0.5, then below.
 layout(set = 0, binding = 7, std430) buffer AdaptiveTaps { uint adaptiveTaps[4]; };
 #endif
 #else
-layout(set = 0, binding = 3) uniform writeonly image2DArray ssaoOut;  // RG8: visibility (or obscurance), packed edges
+layout(set = 0, binding = 3, rg8) uniform writeonly image2DArray ssaoOut;  // RG8: visibility (or obscurance), packed edges
 #endif
 
 const float kPattern[kCacaoMaxTaps * 4] = float[kCacaoMaxTaps * 4](AOR_CACAO_SAMPLE_PATTERN);
 
 vec4 patternTap(int i) { return vec4(kPattern[4 * i], kPattern[4 * i + 1], kPattern[4 * i + 2], kPattern[4 * i + 3]); }
 
-// FFX_CACAO_SSAOGeneration_GetNormalPass: a Load, so outside the layer it reads zero.
-vec3 normalAt(ivec2 p, int layer, vec2 size) {
-  if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(vec2(p), size))) return vec3(0.0);
-  return texelFetch(normals, ivec3(p, layer), 0).xyz;
-}
+// FFX_CACAO_SSAOGeneration_GetNormalPass: a Load, so outside the layer it reads zero. The centre
+// is inside (main returns past the layer's size) and a neighbour can leave it on one side only, so
+// the caller says whether p is inside with one comparison.
+vec3 normalAt(ivec2 p, int layer, bool inside) { return inside ? texelFetch(normals, ivec3(p, layer), 0).xyz : vec3(0.0); }
 
 
 struct Centre {
@@ -101,16 +100,18 @@ void main() {
   // taken at the corners of the 2x2 blocks (up-left and down-right of the centre) instead of at
   // the centre texel's middle, so rounding cannot move the footprints. x, y, z, w are texels
   // (0, 1), (1, 1), (1, 0), (0, 0) of a footprint.
-  vec2 depthSize = vec2(textureSize(viewDepths, 0).xy);
-  vec4 valuesUL = textureGather(viewDepths, vec3(vec2(coord) / depthSize, float(layer)));
-  vec4 valuesBR = textureGather(viewDepths, vec3(vec2(coord + 1) / depthSize, float(layer)));
+  // The corners by the constants' inverse size (no textureSize query, a texture-unit instruction on
+  // NVIDIA, and no divides); at a corner the last bits cannot move the footprint.
+  vec2 depthInv = c.deinterleavedDepthBufferInverseDimensions;
+  vec4 valuesUL = textureGather(viewDepths, vec3(vec2(coord) * depthInv, float(layer)));
+  vec4 valuesBR = textureGather(viewDepths, vec3(vec2(coord + 1) * depthInv, float(layer)));
   float pixZ = valuesUL.y;
   float pixLZ = valuesUL.x, pixRZ = valuesBR.z;
   float pixTZ = valuesUL.z, pixBZ = valuesBR.x;
 
   vec2 normalizedScreenPos = (svPos + 0.5) * c.ssaoBufferInverseDimensions;
   p.position = cacaoNdcToView(c, normalizedScreenPos, pixZ);
-  p.normal = normalAt(coord, layer, c.ssaoBufferDimensions);
+  p.normal = normalAt(coord, layer, true);
   vec2 pixelDirRBViewspaceSizeAtCenterZ = p.position.z * c.ndcToViewMul * c.ssaoBufferInverseDimensions;
 
   // FFX_CACAO_CalculateRadiusParameters.
@@ -122,7 +123,9 @@ void main() {
 
   // The layer's rotation and scale of the pattern, one of five by pixel.
   uint pseudoRandomIndex = uint(svPos.y * 2.0 + svPos.x) % 5u;
-  vec4 rs = c.patternRotScaleMatrices[pseudoRandomIndex];
+  // Straight from the uniform buffer: a dynamic index into the local copy c can keep the whole copy
+  // (376 bytes) in local memory.
+  vec4 rs = cacaoLayers[layer].patternRotScaleMatrices[pseudoRandomIndex];
   p.rotScale0 = vec2(rs.x * pixLookupRadiusMod, rs.y * pixLookupRadiusMod);
   p.rotScale1 = vec2(rs.z * pixLookupRadiusMod, rs.w * pixLookupRadiusMod);
 
@@ -152,10 +155,10 @@ void main() {
   if (!kAdaptiveBase && kQuality >= kCacaoNormalBasedEdgesAtQuality) {
     vec2 size = c.ssaoBufferDimensions;
     vec4 normalEdges;
-    normalEdges.x = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(-1, 0), layer, size)) + kCacaoNormalBasedEdgesDotThreshold);
-    normalEdges.y = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(+1, 0), layer, size)) + kCacaoNormalBasedEdgesDotThreshold);
-    normalEdges.z = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(0, -1), layer, size)) + kCacaoNormalBasedEdgesDotThreshold);
-    normalEdges.w = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(0, +1), layer, size)) + kCacaoNormalBasedEdgesDotThreshold);
+    normalEdges.x = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(-1, 0), layer, coord.x > 0)) + kCacaoNormalBasedEdgesDotThreshold);
+    normalEdges.y = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(+1, 0), layer, float(coord.x + 1) < size.x)) + kCacaoNormalBasedEdgesDotThreshold);
+    normalEdges.z = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(0, -1), layer, coord.y > 0)) + kCacaoNormalBasedEdgesDotThreshold);
+    normalEdges.w = cacaoSaturate(dot(p.normal, normalAt(coord + ivec2(0, +1), layer, float(coord.y + 1) < size.y)) + kCacaoNormalBasedEdgesDotThreshold);
     edgesLRTB *= normalEdges;
   }
 

@@ -5,6 +5,7 @@
 // even pixels (downsampled), as view depth (cacaoGatherPhases).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_control_flow_attributes : require
 #include "cacao_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -18,8 +19,8 @@ void main() {
   ivec2 tid = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(vec2(tid), c.deinterleavedDepthBufferDimensions))) return;
   // Layer k holds phase (k % 2, k / 2), clamped at the edge as the point-clamp sampler is.
-  vec4 phases = cacaoGatherPhases(depthIn, tid, kDownsampled);
-  for (int layer = 0; layer < kCacaoLayers; ++layer) {
+  vec4 phases = cacaoGatherPhases(depthIn, tid, kDownsampled, c.depthBufferInverseDimensions);
+  AOR_UNROLL for (int layer = 0; layer < kCacaoLayers; ++layer) {
     if (kHalf && (layer == 1 || layer == 2)) continue;  // discarded at lowest: top right, bottom left
     imageStore(depthsOut, ivec3(tid, layer), vec4(cacaoViewDepth(c, phases[layer])));
   }

@@ -12,7 +12,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = kCacaoSpecDownsampled) const bool kDownsampled = false;
 layout(set = 0, binding = 1) uniform sampler2D depthIn;
-layout(set = 0, binding = 2) uniform writeonly image2DArray normalsOut;  // RGBA8_SNORM
+layout(set = 0, binding = 2, rgba8_snorm) uniform writeonly image2DArray normalsOut;  // RGBA8_SNORM
 
 // FFX_CACAO_CalculateNormal: the sum of the four cross products of neighbour directions whose two
 // sides are both not edges, plus a small bias towards the camera.
