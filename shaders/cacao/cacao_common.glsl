@@ -10,7 +10,7 @@ layout(set = 0, binding = 0, scalar) uniform CacaoConstantBuffers { CacaoConstan
 // infinite projection, invalid input) is stored as kCacaoMaxViewDepth instead of inf or NaN.
 float cacaoViewDepth(CacaoConstants c, float screenDepth) {
   float z = c.depthUnpackConsts.x / (c.depthUnpackConsts.y - screenDepth);
-  return (z > 0.0 && z < kCacaoMaxViewDepth) ? z : kCacaoMaxViewDepth;
+  return z > 0.0 ? min(z, kCacaoMaxViewDepth) : kCacaoMaxViewDepth;  // NaN and z <= 0 fail the test
 }
 
 // FFX_CACAO_NDCToViewSpace (uv in [0, 1], origin top left) and FFX_CACAO_DepthBufferUVToViewSpace.
