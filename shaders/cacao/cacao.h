@@ -14,8 +14,9 @@ AOR_CONST int kCacaoSpecHalf = 3;          // prepare depths: the DepthsHalf ent
 AOR_CONST int kCacaoSpecBlurPasses = 4;    // edge-sensitive blur: FFX_CACAO_EdgeSensitiveBlurN's N
 AOR_CONST int kCacaoSpecVariant = 5;       // apply / upscale / postprocess: which entry point (below)
 AOR_CONST int kCacaoSpecLayerMask = 6;     // debug tiling: the layers written (bit k = layer k)
-AOR_CONST int kCacaoSpecFirstChannel = 7;
-AOR_CONST int kCacaoSpecDepthMipLevels = 8;  // prepare depths and mips: levels the image has (fewer than 4 on a tiny frame)  // debug tiling: the channel moved first (the PNG shows the first)
+AOR_CONST int kCacaoSpecFirstChannel = 7;    // debug tiling: the channel moved first (the PNG shows the first)
+AOR_CONST int kCacaoSpecDepthMipLevels = 8;  // prepare depths and mips: levels the image has (fewer than 4 on a tiny frame)
+AOR_CONST int kCacaoSpecSmallLayer = 9;      // edge-sensitive blur: a layer under kCacaoBlurMirrorMin pixels a side
 
 // kCacaoSpecVariant of apply.comp and upscale_bilateral.comp.
 AOR_CONST int kCacaoVariantSmart = 0;     // FFX_CACAO_Apply, FFX_CACAO_UpscaleBilateral5x5Smart

@@ -242,8 +242,10 @@ ResourceId addGenerateAdaptive(CacaoFrame& f, const Prepared& in, ResourceId bas
 ResourceId addEdgeSensitiveBlur(CacaoFrame& f, ResourceId ssao) {
   ResourceId blurred = f.layerImage("cacao_ssao_blurred", f.sizes.ssao, VK_FORMAT_R8G8_UNORM);
   int passes = f.settings.blurPassCount;
+  bool smallLayer = int(std::min(f.sizes.ssao.x, f.sizes.ssao.y)) < shader::kCacaoMaxBlurPasses;  // the mirror's periodic form
   std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecBlurPasses, passes),
-                                                  spec(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality))};
+                                                  spec(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality)),
+                                                  spec(shader::kCacaoSpecSmallLayer, smallLayer)};
   // Each workgroup writes its 64x48 tile less blur_pass_count pixels on each side.
   uint32_t tileW = uint32_t(shader::kCacaoBlurTileWidth) * shader::kCacaoBlurWorkgroup - 2 * uint32_t(passes);
   uint32_t tileH = uint32_t(shader::kCacaoBlurTileHeight) * shader::kCacaoBlurWorkgroup - 2 * uint32_t(passes);
