@@ -20,11 +20,20 @@ void main() {
   // FidelityFX stores from every thread and leaves the partial workgroups past the layers' edge to
   // D3D, which drops writes outside a texture; in Vulkan they are undefined, so those threads
   // compute (the clamped gather reads inside the capture) and skip only their stores. Each store
-  // under the test instead of an early return: 1.009 -> 1.000 of FidelityFX's time at low native
-  // on an H200, 1.014 -> 1.007 at lowest (the same form timed as a scratch build, 2026-12-03).
+  // under the test instead of an early return: 1.009-1.018 -> 1.000-1.013 of FidelityFX's time at
+  // low native on an H200 (two device calls; FidelityFX has no test at all).
   bool inside = all(lessThan(vec2(tid), c.deinterleavedDepthBufferDimensions));
   // Layer k holds phase (k % 2, k / 2), clamped at the edge as the point-clamp sampler is.
-  vec4 phases = cacaoGatherPhases(depthIn, tid, kDownsampled, c.depthBufferInverseDimensions);
+  vec4 phases;
+  if (kHalf && !kDownsampled) {
+    // FFX_CACAO_PrepareNativeDepthsHalf loads only the two texels it keeps (phases (0, 0), (1, 1)):
+    // 1.012 -> 0.995 of FidelityFX's time on an H200 against one gather of all four.
+    vec2 topLeft = vec2(2 * tid) + 0.5;
+    phases.x = textureLod(depthIn, topLeft * c.depthBufferInverseDimensions, 0.0).x;
+    phases.w = textureLod(depthIn, (topLeft + 1.0) * c.depthBufferInverseDimensions, 0.0).x;
+  } else {
+    phases = cacaoGatherPhases(depthIn, tid, kDownsampled, c.depthBufferInverseDimensions);
+  }
   AOR_UNROLL for (int layer = 0; layer < kCacaoLayers; ++layer) {
     if (kHalf && (layer == 1 || layer == 2)) continue;  // discarded at lowest: top right, bottom left
     if (inside) imageStore(depthsOut, ivec3(tid, layer), vec4(cacaoViewDepth(c, phases[layer])));
