@@ -16,7 +16,7 @@ AOR_CONST int kCacaoSpecVariant = 5;       // apply / upscale / postprocess: whi
 AOR_CONST int kCacaoSpecLayerMask = 6;     // debug tiling: the layers written (bit k = layer k)
 AOR_CONST int kCacaoSpecFirstChannel = 7;    // debug tiling: the channel moved first (the PNG shows the first)
 AOR_CONST int kCacaoSpecDepthMipLevels = 8;  // prepare depths and mips: levels the image has (fewer than 4 on a tiny frame)
-AOR_CONST int kCacaoSpecSmallLayer = 9;      // edge-sensitive blur: a layer under kCacaoBlurMirrorMin pixels a side
+AOR_CONST int kCacaoSpecSmallLayer = 9;      // edge-sensitive blur: a layer under kCacaoMaxBlurPasses pixels a side (the periodic mirror)
 
 // kCacaoSpecVariant of apply.comp and upscale_bilateral.comp.
 AOR_CONST int kCacaoVariantSmart = 0;     // FFX_CACAO_Apply, FFX_CACAO_UpscaleBilateral5x5Smart
