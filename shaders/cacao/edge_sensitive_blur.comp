@@ -31,10 +31,9 @@ shared uint back[kPairsW][kRowsH];
 // [-8, n + 8) (at most 8 passes), inside that range once n >= 8. Beyond it (the far side of the
 // last tile, whose pixels reach no stored one) the index is held at 0 so that every fetch stays
 // inside the layer. Layers under 8 pixels a side take the periodic form, chosen when the pipeline
-// is made (a run-time branch on the size put the native blur at 1.02-1.04 of FidelityFX's
-// time on an H200; without it 0.70-0.75). Together with the
-// stores below: the blur 0.89-0.99 of FidelityFX's time on lavapipe where it was 1.06-1.3 (output
-// unchanged).
+// is made (a run-time branch on the size put the native blur at 1.02-1.04 of FidelityFX's time on
+// an H200; without it 0.70-0.75). Together with the stores below: the blur 0.89-0.99 of
+// FidelityFX's time on lavapipe where it was 1.06-1.3 (output unchanged).
 layout(constant_id = kCacaoSpecSmallLayer) const bool kSmallLayer = false;
 int mirrorIndex(int i, int n) {
   if (kSmallLayer) {
