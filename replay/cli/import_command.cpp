@@ -1,6 +1,7 @@
 // `aoreplay import renderdoc FILE.rdc...`: a bug frame captured with RenderDoc becomes an aoreplay
 // capture (replay/import/, README "From a RenderDoc capture").
 #include <cstdio>
+#include <map>
 #include <memory>
 
 #include "cli/commands.h"
@@ -51,6 +52,14 @@ void registerImportCommand(CLI::App& app) {
   rd->add_option("--view", o.view, "world -> view matrix: BLOCK.member of a uniform block")->required();
   rd->add_option("--projection", o.projection, "view -> clip matrix: BLOCK.member of a uniform block")->required();
   rd->add_option("--frames-from-dir", args->framesFromDir, "every .rdc in this folder, one frame each");
+  rd->add_flag("--no-self-check", o.noSelfCheck,
+              "import without checking the frame against the draw's own vertices (capture.json records it)");
+  // Tests only: a mistake made on purpose, to show that the self-check catches it (hidden from --help).
+  rd->add_option("--test-only-fault", o.fault)
+      ->transform(CLI::CheckedTransformer(std::map<std::string, ImportFault>{
+          {"rows", ImportFault::RowsUnflipped}, {"d24-low-bits", ImportFault::D24LowBits},
+          {"clip-z", ImportFault::ClipZAsZeroToOne}}))
+      ->group("");
   rd->add_option("--renderdoc-python", o.renderdocPython,
                  "folder holding renderdoc.so of a RenderDoc build (default: Debian's python3-renderdoc)");
   handlers()["import"] = [args] { return importCommand(*args); };

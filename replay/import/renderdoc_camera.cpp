@@ -97,16 +97,16 @@ ViewportRect viewportRect(float x, float y, float width, float height, float min
   return v;
 }
 
-ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool viewportFlipsY) {
+ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool clipYUpAtTopRow) {
   ImportedCamera c{view, projection, {}};
   if (projection[2][3] == 1.0f) {  // left-handed: S = diag(1, 1, -1, 1); view' = S view, projection' = P S
     for (int col = 0; col < 4; ++col) c.view[col][2] = -c.view[col][2];
     c.projection[2] = -c.projection[2];
     c.adjustments.push_back("left-handed view space: z flipped in view and projection");
   }
-  if (viewportFlipsY) {  // F = diag(1, -1, 1, 1): projection' = F P
+  if (clipYUpAtTopRow) {  // F = diag(1, -1, 1, 1): projection' = F P
     for (int col = 0; col < 4; ++col) c.projection[col][1] = -c.projection[col][1];
-    c.adjustments.push_back("negative viewport height: projection y flipped");
+    c.adjustments.push_back("NDC y = +1 at the top row: projection y flipped");
   }
   return c;
 }

@@ -33,8 +33,10 @@ struct ImportedCamera {
   std::vector<std::string> adjustments;  // what was changed, for the summary and capture.json
 };
 // Left-handed view spaces get z flipped (view and projection together, so clip space is
-// unchanged); a flipped viewport flips the projection's y instead. Both are exact negations.
-ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool viewportFlipsY);
+// unchanged); where NDC y = +1 lands on the capture's top row (a negative Vulkan viewport height,
+// GL's lower-left origin once its rows are turned top-down) the projection's y is flipped
+// instead. Both are exact negations.
+ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool clipYUpAtTopRow);
 
 // "perspective, standard depth, near 0.1, far 40, vertical field of view 60.0 degrees".
 std::string describeProjection(const glm::mat4& projection);

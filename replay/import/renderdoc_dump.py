@@ -9,16 +9,20 @@ the capture to the chosen event and writes, into --out:
                error, after whatever was found before it
   depth.bin    the depth attachment's texels as RenderDoc returns them (GetTextureData)
   normals.bin  the normal target's texels, when one was asked for
+  postvs.bin   the draw's triangles after the vertex shader: clip-space x, y, z, w (float32) of
+               each corner, three corners a triangle, for the import's self-check
 
 It only reads and reports: decoding the texels, checking the matrices and writing the capture
 are the C++ side's job (replay/import/). Bad input is {"error": {"field", "message"}} in dump.json
 and exit status 0; any other exit status means the script itself failed.
 """
 import argparse
+import array
 import json
 import os
 import struct
 import sys
+import time
 
 RDC_MAGIC = b"RDOC\0\0\0\0"
 
@@ -42,6 +46,7 @@ def parse_arguments():
     p.add_argument("--normals", default="none")
     p.add_argument("--view", required=True)
     p.add_argument("--projection", required=True)
+    p.add_argument("--no-self-check", action="store_true")
     return p.parse_args()
 
 
@@ -309,6 +314,112 @@ def block_listing(frame):
     return "; ".join(listed) or "none"
 
 
+def conventions_of(rd, controller, api):
+    """How this API maps clip space to the depth target: read from the captured state, never assumed."""
+    state = controller.GetPipelineState()
+    viewport = state.GetViewport(0)
+    c = {"api": api, "depth_range": [viewport.minDepth, viewport.maxDepth]}
+    if state.IsCaptureVK():
+        c.update({"clip_z": "-1..1" if controller.GetVulkanPipelineState().viewportScissor.depthNegativeOneToOne
+                  else "0..1", "clip_y_at_row_0": "-1", "rows": "top-down"})
+    elif state.IsCaptureGL():
+        gl = controller.GetGLPipelineState()
+        processing = gl.vertexProcessing
+        c.update({"clip_z": "-1..1" if processing.clipNegativeOneToOne else "0..1",
+                  "clip_y_at_row_0": "-1" if processing.clipOriginLowerLeft else "+1", "rows": "bottom-up",
+                  "depth_range": [gl.rasterizer.viewports[0].minDepth, gl.rasterizer.viewports[0].maxDepth]})
+    return c
+
+
+MAX_CHECK_TRIANGLES = 65536  # beyond this many, every k-th triangle (the check's cost stays bounded)
+TRIANGLE_TOPOLOGIES = ("TriangleList", "TriangleStrip", "TriangleFan")
+
+
+def check_impossible(reason):
+    return {"possible": False, "reason": reason}
+
+
+def corner_indices(rd, mesh, controller):
+    """The post-VS vertex index of each drawn corner, in order, with primitive restart kept as None."""
+    if mesh.indexResourceId == rd.ResourceId.Null():
+        return list(range(mesh.numIndices))
+    kind = {1: "B", 2: "H", 4: "I"}[mesh.indexByteStride]
+    data = controller.GetBufferData(mesh.indexResourceId, mesh.indexByteOffset, mesh.numIndices * mesh.indexByteStride)
+    indices = array.array(kind)
+    indices.frombytes(bytes(data)[:mesh.numIndices * mesh.indexByteStride])
+    restart = mesh.restartIndex if mesh.allowRestart else None
+    return [None if i == restart else i + mesh.baseVertex for i in indices]
+
+
+def triangles_of(topology, corners):
+    """Corner index triples of a list, strip or fan (restarts split strips and fans)."""
+    if topology == "TriangleList":
+        return [tuple(corners[i:i + 3]) for i in range(0, len(corners) - 2, 3) if None not in corners[i:i + 3]]
+    out, run = [], []
+    for c in corners + [None]:
+        if c is not None:
+            run.append(c)
+            continue
+        for i in range(len(run) - 2):
+            if topology == "TriangleFan":
+                out.append((run[0], run[i + 1], run[i + 2]))
+            else:
+                out.append((run[i], run[i + 1], run[i + 2]) if i % 2 == 0 else (run[i + 1], run[i], run[i + 2]))
+        run = []
+    return out
+
+
+def positions_of(controller, mesh):
+    """Each post-VS vertex's first output, the position (clip x, y, z, w), as a flat float list."""
+    data = bytes(controller.GetBufferData(mesh.vertexResourceId, mesh.vertexByteOffset, 0))
+    floats = array.array("f")
+    floats.frombytes(data[:len(data) // 4 * 4])
+    stride = mesh.vertexByteStride // 4
+    return floats, stride
+
+
+def dump_post_vs(frame, action, out_dir):
+    """The draw's triangles in clip space, for the self-check, or why the check cannot run."""
+    rd, controller = frame.rd, frame.controller
+    state = controller.GetPipelineState()
+    for stage, what in (("Geometry", "a geometry shader"), ("Hull", "tessellation"), ("Domain", "tessellation")):
+        if state.GetShaderReflection(getattr(rd.ShaderStage, stage)) is not None:
+            return check_impossible("the draw uses %s, so the vertex shader's output is not what was rasterised" % what)
+    if not action.flags & rd.ActionFlags.Drawcall:
+        return check_impossible("event %s is not a draw" % frame.current)
+    if state.MultiviewBroadcastCount() > 1:
+        return check_impossible("the draw is multiview (%d views)" % state.MultiviewBroadcastCount())
+    out = array.array("f")
+    instances = max(1, action.numInstances)
+    triangles_seen = 0
+    topology = ""
+    for instance in range(instances):
+        mesh = controller.GetPostVSData(instance, 0, rd.MeshDataStage.VSOut)
+        if mesh.vertexResourceId == rd.ResourceId.Null() or mesh.numIndices == 0:
+            why = mesh.status or "RenderDoc returned no post-vertex-shader data"
+            return check_impossible("no post-vertex-shader data for instance %d: %s" % (instance, why))
+        names = {getattr(rd.Topology, name): name for name in dir(rd.Topology) if not name.startswith("_")}
+        topology = names.get(mesh.topology, str(mesh.topology))
+        if topology not in TRIANGLE_TOPOLOGIES:
+            return check_impossible("the draw's topology is %s, not triangles" % topology)
+        if mesh.vertexByteStride < 16:
+            return check_impossible("post-vertex-shader records of %d bytes hold no position" % mesh.vertexByteStride)
+        positions, stride = positions_of(controller, mesh)
+        triangles = triangles_of(topology, corner_indices(rd, mesh, controller))
+        step = max(1, len(triangles) * instances // MAX_CHECK_TRIANGLES)
+        for t in triangles[::step]:
+            for v in t:
+                if (v + 1) * stride > len(positions):
+                    return check_impossible("post-vertex-shader index %d is past the %d vertices RenderDoc returned"
+                                            % (v, len(positions) // stride))
+                out.extend(positions[v * stride:v * stride + 4])
+        triangles_seen += len(triangles)
+    with open(os.path.join(out_dir, "postvs.bin"), "wb") as f:
+        f.write(out.tobytes())
+    return {"possible": True, "file": "postvs.bin", "topology": topology, "instances": instances,
+            "triangles": triangles_seen, "triangles_dumped": len(out) // 12}
+
+
 def dump(args, result):
     """Fills `result` step by step, so that what was found before an error is still reported."""
     file_version, made_with = read_header(args.capture)
@@ -327,6 +438,7 @@ def dump(args, result):
         result["event"] = {"id": action.eventId, "name": action.GetName(frame.structured), "passes": markers,
                            "why": why}
         result["viewport"] = viewport_of(controller.GetPipelineState())
+        result["conventions"] = conventions_of(rd, controller, result["api"])
         result["blocks"] = block_listing(frame)
         result["depth"] = dump_depth(frame, args.out)
         if depth_id is not None and result["depth"]["id"] != id_number(depth_id):
@@ -335,6 +447,10 @@ def dump(args, result):
         result["normals"] = dump_normals(frame, args, args.out)
         result["view"] = read_matrix(frame, args.view, "--view")
         result["projection"] = read_matrix(frame, args.projection, "--projection")
+        started = time.monotonic()
+        result["self_check"] = check_impossible("--no-self-check") if args.no_self_check else \
+            dump_post_vs(frame, action, args.out)
+        result["self_check"]["seconds"] = time.monotonic() - started
     finally:
         controller.Shutdown()
         cap.Shutdown()

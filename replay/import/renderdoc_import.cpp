@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -12,9 +14,11 @@
 
 #include "capture/capture.h"
 #include "capture/input_error.h"
+#include "import/api_conventions.h"
 #include "import/import_problem.h"
 #include "import/renderdoc_camera.h"
 #include "import/renderdoc_script.h"
+#include "import/self_check.h"
 #include "import/texel_decoding.h"
 #include "report/output_directory.h"
 
@@ -72,6 +76,50 @@ struct ImportedFrame {
   json scene;  // what was chosen, for capture.json
 };
 
+// What was read of the frame on the way, for the self-check.
+struct FrameFacts {
+  ApiConventions conventions;  // as RenderDoc reports them: the self-check's reference
+  ApiConventions applied;      // what the import followed: the same, but for a test-only fault
+  RawViewport viewport;
+  ViewportRect rect;
+  double depthQuantum = 0.0;
+  glm::mat4 appProjection{1.0f};
+};
+
+// The captured API's conventions, as the dump script read them from the draw's state.
+ApiConventions conventionsOf(const json& dump) {
+  const json& c = dump.at("conventions");
+  ApiConventions conventions;
+  conventions.api = c.at("api");
+  if (conventions.api != "Vulkan" && conventions.api != "OpenGL")
+    throw ImportProblem("", fmt::format("{} captures are not supported (Vulkan and OpenGL are)", conventions.api));
+  conventions.clipZMinusOneToOne = c.at("clip_z") == "-1..1";
+  conventions.clipOriginUpperLeft = c.at("clip_y_at_row_0") == "+1";
+  conventions.rowsBottomUp = c.at("rows") == "bottom-up";
+  return conventions;
+}
+
+ApiConventions withFault(ApiConventions c, ImportFault fault) {
+  if (fault == ImportFault::ClipZAsZeroToOne) c.clipZMinusOneToOne = false;
+  if (fault == ImportFault::RowsUnflipped) c.rowsBottomUp = !c.rowsBottomUp;
+  return c;
+}
+
+double quantumOf(const std::string& format) {
+  if (format == "D16") return 1.0 / 65535.0;
+  if (format == "D24" || format == "D24S8") return 1.0 / 16777215.0;
+  return 0.0;
+}
+
+// The image's rows in reverse order: GL's bottom-up rows to the capture's top-down ones.
+std::vector<float> flipRows(const std::vector<float>& values, int width, int height, int components) {
+  const size_t row = size_t(width) * size_t(components);
+  std::vector<float> out(values.size());
+  for (int y = 0; y < height; ++y)
+    std::copy_n(values.begin() + ptrdiff_t(size_t(y) * row), row, out.begin() + ptrdiff_t(size_t(height - 1 - y) * row));
+  return out;
+}
+
 TexelImage readTexels(const json& entry, const fs::path& folder) {
   TexelImage image;
   image.width = entry.at("width");
@@ -91,6 +139,13 @@ std::vector<float> crop(const std::vector<float>& values, int width, int compone
     out.insert(out.end(), row, row + ptrdiff_t(r.width) * components);
   }
   return out;
+}
+
+// The viewport's pixels, top row first.
+std::vector<float> cropToCapture(const std::vector<float>& values, int width, int components, const ViewportRect& r,
+                                 const ApiConventions& c) {
+  const std::vector<float> cropped = crop(values, width, components, r);
+  return c.rowsBottomUp ? flipRows(cropped, r.width, r.height, components) : cropped;
 }
 
 std::string resourceText(const json& entry) {
@@ -119,26 +174,35 @@ void printEvent(const json& dump, const fs::path& file, int index, std::FILE* lo
              e.at("name").get<std::string>(), passes, e.at("why").get<std::string>());
 }
 
-// The depth of the draw's viewport, as floats; `rect` receives the viewport.
-std::vector<float> importDepth(const json& dump, const fs::path& folder, ViewportRect& rect, json& scene,
-                               std::FILE* log) {
+// The depth of the draw's viewport, as floats, top row first; `facts` receives the viewport.
+std::vector<float> importDepth(const json& dump, const fs::path& folder, const RenderDocImportOptions& o,
+                               FrameFacts& facts, json& scene, std::FILE* log) {
   const json& d = dump.at("depth");
   const json& v = dump.at("viewport");
+  const json& range = dump.at("conventions").at("depth_range");
+  facts.conventions = conventionsOf(dump);
+  facts.applied = withFault(facts.conventions, o.fault);
   const TexelImage texels = readTexels(d, folder);
-  const std::vector<float> depth = decodeDepth(texels);
-  rect = viewportRect(v.at("x"), v.at("y"), v.at("width"), v.at("height"), v.at("min_depth"), v.at("max_depth"),
-                      texels.width, texels.height);
+  const DepthDecodeFault fault = o.fault == ImportFault::D24LowBits ? DepthDecodeFault::Unorm24LowBits
+                                                                    : DepthDecodeFault::None;
+  const std::vector<float> depth = decodeDepth(texels, facts.applied.api, fault);
+  facts.depthQuantum = quantumOf(texels.format);
+  facts.viewport = {v.at("x"), v.at("y"), v.at("width"), v.at("height")};
+  ViewportRect& rect = facts.rect;
+  rect = viewportRect(v.at("x"), v.at("y"), v.at("width"), v.at("height"), range.at(0), range.at(1), texels.width,
+                      texels.height);
   const bool whole = rect.x == 0 && rect.y == 0 && rect.width == texels.width && rect.height == texels.height;
-  fmt::print(log, "  depth: {}; viewport {}x{} at ({}, {}){}\n", resourceText(d), rect.width, rect.height, rect.x,
-             rect.y, whole ? "" : ", cropped to it");
+  fmt::print(log, "  depth: {}; viewport {}x{} at ({}, {}){}{}\n", resourceText(d), rect.width, rect.height, rect.x,
+             rect.y, whole ? "" : ", cropped to it", facts.applied.rowsBottomUp ? "; rows bottom-up, flipped" : "");
   scene["depth"] = {{"resource", d.at("resource")}, {"id", d.at("id")}, {"format", d.at("format").at("name")},
                     {"mip", d.at("mip")}, {"layer", d.at("layer")}};
   scene["viewport"] = {{"x", rect.x}, {"y", rect.y}, {"width", rect.width}, {"height", rect.height},
                        {"flips_y", rect.flipsY}};
-  return whole ? depth : crop(depth, texels.width, 1, rect);
+  scene["rows_flipped"] = facts.applied.rowsBottomUp;
+  return cropToCapture(depth, texels.width, 1, rect, facts.applied);
 }
 
-std::vector<float> importNormals(const json& dump, const fs::path& folder, const ViewportRect& rect,
+std::vector<float> importNormals(const json& dump, const fs::path& folder, const FrameFacts& facts,
                                  const RenderDocImportOptions& o, json& scene, std::FILE* log) {
   const json& n = dump.at("normals");
   if (n.is_null()) {
@@ -155,10 +219,18 @@ std::vector<float> importNormals(const json& dump, const fs::path& folder, const
   fmt::print(log, "  normals: {}, {} space\n", resourceText(n), o.normalsSpace);
   scene["normals"] = {{"resource", n.at("resource")}, {"id", n.at("id")}, {"format", n.at("format").at("name")},
                       {"space", o.normalsSpace}};
-  return crop(decodeNormals(texels), texels.width, 3, rect);
+  return cropToCapture(decodeNormals(texels), texels.width, 3, facts.rect, facts.applied);
 }
 
-ImportedCamera importMatrices(const json& dump, const ViewportRect& rect, json& scene, std::FILE* log) {
+// Whether NDC y = +1 lands on the capture's top row (the format wants -1 there): then the
+// projection's y is negated.
+bool captureTopIsClipYUp(const FrameFacts& f) {
+  const double top = f.applied.rowsBottomUp ? f.rect.y + f.rect.height : f.rect.y;
+  const double ndc = 2.0 * (top - double(f.viewport.y)) / double(f.viewport.height) - 1.0;
+  return (f.applied.clipOriginUpperLeft ? -ndc : ndc) > 0.0;
+}
+
+ImportedCamera importMatrices(const json& dump, FrameFacts& facts, json& scene, std::FILE* log) {
   const json& v = dump.at("view");
   const json& p = dump.at("projection");
   const std::string viewName = v.at("block").get<std::string>() + "." + v.at("member").get<std::string>();
@@ -172,7 +244,11 @@ ImportedCamera importMatrices(const json& dump, const ViewportRect& rect, json& 
   const glm::mat4 view = matrixOf(v), projection = matrixOf(p);
   checkProjectionMatrix(projection, projectionName);
   checkViewMatrix(view, viewName);
-  ImportedCamera camera = importCamera(view, projection, rect.flipsY);
+  facts.appProjection = projection;
+  ImportedCamera camera =
+      importCamera(view, projectionToZeroToOne(facts.applied, projection), captureTopIsClipYUp(facts));
+  if (facts.applied.clipZMinusOneToOne)
+    camera.adjustments.insert(camera.adjustments.begin(), "clip z in [-1, 1]: projection's depth row mapped to [0, 1]");
   fmt::print(log, "  view: {}\n  projection: {}: {}\n", matrixText(v), matrixText(p),
              describeProjection(camera.projection));
   for (const std::string& a : camera.adjustments) fmt::print(log, "  adjusted: {}\n", a);
@@ -181,6 +257,92 @@ ImportedCamera importMatrices(const json& dump, const ViewportRect& rect, json& 
   scene["camera"] = describeProjection(camera.projection);
   scene["adjustments"] = camera.adjustments;
   return camera;
+}
+
+std::vector<glm::vec4> readCorners(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+  std::vector<glm::vec4> corners(bytes.size() / sizeof(glm::vec4));
+  std::memcpy(corners.data(), bytes.data(), corners.size() * sizeof(glm::vec4));
+  return corners;
+}
+
+void printSelfCheck(const SelfCheckResult& r, double seconds, std::FILE* log) {
+  fmt::print(log,
+             "  self-check: {} vertices ({} on screen), clip z from w within {:.2g}; {} points in {} triangles: {} "
+             "match the imported depth, {} hidden by nearer surfaces, {} disagree ({:.2f} s)\n",
+             r.vertices, r.verticesOnScreen, r.depthRowResidual, r.points, r.triangles, r.matched, r.hidden,
+             r.disagreed, seconds);
+}
+
+// No time in it: the same .rdc imports to the same bytes.
+json selfCheckJson(const SelfCheckResult& r) {
+  return {{"vertices", r.vertices},       {"vertices_on_screen", r.verticesOnScreen},
+          {"depth_row_residual", r.depthRowResidual}, {"triangles", r.triangles},
+          {"points", r.points},           {"matched", r.matched},
+          {"hidden", r.hidden},           {"disagreed", r.disagreed},
+          {"worst_difference", r.worstDifference}};
+}
+
+void failSelfCheck(const SelfCheckResult& r, const json& dump, const FrameFacts& facts) {
+  const json& p = dump.at("projection");
+  if (!r.depthRowPassed())
+    throw ImportProblem("--projection",
+                        fmt::format("self-check failed: {}.{} does not give the draw's vertices their clip-space z (largest "
+                                    "residual {:.3g} in NDC over {} on-screen vertices, at most {:g}): it is not the "
+                                    "projection this draw was rendered with",
+                                    p.at("block").get<std::string>(), p.at("member").get<std::string>(),
+                                    r.depthRowResidual, r.verticesOnScreen, kSelfCheckMaxDepthRowResidual));
+  const std::string what = fmt::format(
+      "the depth's decoding ({} {}), its row order (flipped: {}) or the projection's depth convention (clip z in {}) "
+      "does not match this capture",
+      facts.applied.api, dump.at("depth").at("format").at("name").get<std::string>(),
+      facts.applied.rowsBottomUp ? "yes" : "no", facts.applied.clipZMinusOneToOne ? "[-1, 1]" : "[0, 1]");
+  const size_t seen = r.matched + r.disagreed;
+  if (seen < kSelfCheckMinPoints)
+    throw ImportProblem("--depth", fmt::format("self-check failed: only {} of {} points of the draw's triangles are "
+                                               "visible in the imported depth (at least {} needed): either the draw "
+                                               "is mostly hidden (choose another --event, or --no-self-check), or {}",
+                                               seen, r.points, kSelfCheckMinPoints, what));
+  throw ImportProblem("--depth", fmt::format("self-check failed: the imported depth disagrees with what the draw wrote "
+                                             "at {} of {} visible points ({:.1f} %, at most {:g} %); worst at pixel ({}, "
+                                             "{}): imported {:.6g}, drawn {:.6g}: {}",
+                                             r.disagreed, seen, 100.0 * double(r.disagreed) / double(seen),
+                                             100.0 * (1.0 - kSelfCheckMinMatchFraction), r.worstX, r.worstY,
+                                             r.worstImported, r.worstDrawn, what));
+}
+
+// Checks the imported frame against the draw's own vertices (self_check.h); throws when it fails
+// or cannot run, unless --no-self-check.
+void selfCheck(const json& dump, const fs::path& folder, const FrameFacts& facts, const CaptureFrameData& data,
+               const RenderDocImportOptions& o, json& scene, std::FILE* log) {
+  if (o.noSelfCheck) {
+    fmt::print(log, "  self-check: skipped (--no-self-check)\n");
+    scene["self_check"] = {{"skipped", "--no-self-check"}};
+    return;
+  }
+  const json& check = dump.at("self_check");
+  if (!check.at("possible").get<bool>())
+    throw ImportProblem("--no-self-check",
+                        fmt::format("self-check not possible: {}; --no-self-check imports the frame unchecked "
+                                    "(capture.json records it)",
+                                    check.at("reason").get<std::string>()));
+  const auto start = std::chrono::steady_clock::now();
+  SelfCheckInput in;
+  in.corners = readCorners(folder / check.at("file").get<std::string>());
+  in.conventions = facts.conventions;
+  in.viewport = facts.viewport;
+  in.rect = facts.rect;
+  in.depth = &data.gbuffer.depth;
+  in.appProjection = facts.appProjection;
+  in.captureProjection = data.projection;
+  in.depthQuantum = facts.depthQuantum;
+  const SelfCheckResult r = runSelfCheck(in);
+  const double seconds = check.at("seconds").get<double>() +
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printSelfCheck(r, seconds, log);
+  scene["self_check"] = selfCheckJson(r);
+  if (!r.depthRowPassed() || !r.depthPassed()) failSelfCheck(r, dump, facts);
 }
 
 ImportedFrame importFrame(const json& dump, const fs::path& file, int index, const fs::path& folder,
@@ -197,19 +359,20 @@ ImportedFrame importFrame(const json& dump, const fs::path& file, int index, con
     s["passes"] = dump["event"]["passes"];
     s["event_chosen"] = dump["event"]["why"];
   }
-  ViewportRect rect;
-  if (dump.contains("depth")) f.data.gbuffer.depth = importDepth(dump, folder, rect, s, log);
+  FrameFacts facts;
+  if (dump.contains("depth")) f.data.gbuffer.depth = importDepth(dump, folder, o, facts, s, log);
   if (dump.contains("error")) {
     const json& e = dump["error"];
     throw ImportProblem(e.at("field"), e.at("message"));
   }
-  f.data.gbuffer.width = rect.width;
-  f.data.gbuffer.height = rect.height;
-  f.data.gbuffer.normals = importNormals(dump, folder, rect, o, s, log);
-  const ImportedCamera camera = importMatrices(dump, rect, s, log);
+  f.data.gbuffer.width = facts.rect.width;
+  f.data.gbuffer.height = facts.rect.height;
+  f.data.gbuffer.normals = importNormals(dump, folder, facts, o, s, log);
+  const ImportedCamera camera = importMatrices(dump, facts, s, log);
   if (o.normalsSpace == "view") viewNormalsToWorld(f.data.gbuffer.normals, matrixOf(dump.at("view")));
   f.data.view = camera.view;
   f.data.projection = camera.projection;
+  selfCheck(dump, folder, facts, f.data, o, s, log);
   return f;
 }
 
@@ -224,6 +387,7 @@ DumpRequest dumpRequest(const RenderDocImportOptions& o, const fs::path& file, c
   r.normals = o.normals;
   r.view = o.view;
   r.projection = o.projection;
+  r.noSelfCheck = o.noSelfCheck;
   return r;
 }
 

@@ -10,6 +10,11 @@
 
 namespace aor {
 
+// Mistakes made on purpose through a hidden option, for the tests that show the self-check
+// catches each: GL rows left bottom-up (Vulkan's rows flipped), GL's D24 read as Vulkan's,
+// GL's clip z taken as [0, 1].
+enum class ImportFault { None, RowsUnflipped, D24LowBits, ClipZAsZeroToOne };
+
 struct RenderDocImportOptions {
   std::vector<std::filesystem::path> files;           // .rdc files, one frame each
   std::optional<std::filesystem::path> framesFromDir;  // or every .rdc in this folder
@@ -21,6 +26,8 @@ struct RenderDocImportOptions {
   std::string normalsSpace = "world";
   std::string view, projection;  // BLOCK.member
   std::string renderdocPython;   // folder of a RenderDoc build's Python module; empty: the installed one
+  bool noSelfCheck = false;      // import without checking against the draw's vertices (recorded)
+  ImportFault fault = ImportFault::None;  // tests only
 };
 
 // The .rdc files in frame order: file-name order, digit runs compared as numbers (frame9 before

@@ -50,6 +50,7 @@ std::vector<std::string> scriptArguments(const DumpRequest& r, const fs::path& s
   if (!r.renderdocPython.empty()) args.insert(args.end(), {"--renderdoc-python", r.renderdocPython});
   if (r.event) args.insert(args.end(), {"--event", std::to_string(*r.event)});
   if (r.passName) args.insert(args.end(), {"--pass", *r.passName});
+  if (r.noSelfCheck) args.push_back("--no-self-check");
   return args;
 }
 
@@ -69,6 +70,11 @@ nlohmann::json runRenderDocDump(const DumpRequest& r) {
     const char* old = std::getenv("LD_LIBRARY_PATH");
     environment["LD_LIBRARY_PATH"] = r.renderdocPython + (old && *old ? std::string(":") + old : "");
   }
+  // Without an X display RenderDoc 1.24 replays OpenGL through EGL only on Mesa's surfaceless
+  // platform; a display, or a platform the user chose, is left alone.
+  const char* display = std::getenv("DISPLAY");
+  const char* platform = std::getenv("EGL_PLATFORM");
+  if ((!display || !*display) && (!platform || !*platform)) environment["EGL_PLATFORM"] = "surfaceless";
   const fs::path out = r.workDir / "script.out", err = r.workDir / "script.err";
   const ProcessResult p = runProcess(scriptArguments(r, script), environment, out, err, kDumpTimeLimit);
   const std::string python = renderDocPythonInterpreter();

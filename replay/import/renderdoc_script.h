@@ -18,6 +18,7 @@ struct DumpRequest {
   std::string depth = "auto";
   std::string normals = "none";
   std::string view, projection;
+  bool noSelfCheck = false;  // the script then skips the post-vertex-shader dump
 };
 
 // dump.json's contents: what the script found and, for bad input, "error" {field, message}.

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <functional>
 
 #include <fmt/format.h>
 
@@ -29,24 +28,35 @@ float halfToFloat(uint16_t h) {
 
 size_t pixelCount(const TexelImage& image) { return size_t(image.width) * size_t(image.height); }
 
-// How one depth format is laid out in GetTextureData's bytes: depth of pixel i at i * stride.
-// Stencil, when the format has it, either follows all depth texels (a plane) or sits beside each.
+// How RenderDoc's GetTextureData lays out one depth format of one API: depth of pixel i at
+// i * stride. Stencil, when the format has it, either follows all depth texels (a plane) or sits
+// beside each. Only layouts measured with the test programs are listed (replay/import/README.md).
 struct DepthLayout {
+  const char* api;
   const char* name;
-  std::vector<size_t> bytesPerPixel;  // the sizes RenderDoc returns for it
-  size_t stride(size_t bytesPerPixelSeen) const {
-    return bytesPerPixelSeen == 5 ? 4 : bytesPerPixelSeen;  // 4-byte depth + a 1-byte stencil plane
-  }
-  std::function<float(const uint8_t*)> texel;
+  size_t bytesPerPixel;  // the size RenderDoc returns for it
+  size_t stride;         // bytes from one depth texel to the next
+  float (*texel)(const uint8_t*);
 };
+
+float unorm16(const uint8_t* p) { return float(load<uint16_t>(p)) / 65535.0f; }
+float unorm24Low(const uint8_t* p) { return float(load<uint32_t>(p) & 0xFFFFFFu) / 16777215.0f; }
+float unorm24High(const uint8_t* p) { return float(load<uint32_t>(p) >> 8) / 16777215.0f; }
+float float32(const uint8_t* p) { return load<float>(p); }
 
 const std::vector<DepthLayout>& depthLayouts() {
   static const std::vector<DepthLayout> layouts = {
-      {"D16", {2}, [](const uint8_t* p) { return float(load<uint16_t>(p)) / 65535.0f; }},
-      {"D24", {4}, [](const uint8_t* p) { return float(load<uint32_t>(p) & 0xFFFFFFu) / 16777215.0f; }},
-      {"D24S8", {4, 5}, [](const uint8_t* p) { return float(load<uint32_t>(p) & 0xFFFFFFu) / 16777215.0f; }},
-      {"D32", {4}, [](const uint8_t* p) { return load<float>(p); }},
-      {"D32S8", {8, 5}, [](const uint8_t* p) { return load<float>(p); }},
+      {"Vulkan", "D16", 2, 2, unorm16},
+      {"Vulkan", "D24", 4, 4, unorm24Low},
+      {"Vulkan", "D24S8", 5, 4, unorm24Low},  // a plane of 1-byte stencil follows
+      {"Vulkan", "D32", 4, 4, float32},
+      {"Vulkan", "D32S8", 8, 8, float32},     // float, stencil, padding per texel
+      {"Vulkan", "D32S8", 5, 4, float32},     // a stencil plane
+      {"OpenGL", "D16", 2, 2, unorm16},
+      {"OpenGL", "D24", 4, 4, unorm24High},   // depth in the high 24 bits
+      {"OpenGL", "D24S8", 4, 4, unorm24High}, // stencil in the low byte
+      {"OpenGL", "D32", 4, 4, float32},
+      {"OpenGL", "D32S8", 8, 8, float32},
   };
   return layouts;
 }
@@ -105,25 +115,34 @@ void checkSize(const TexelImage& image, size_t bytesPerPixel) {
 
 }  // namespace
 
-const char* supportedDepthFormats() { return "D16, D24 (X8_D24), D24S8, D32, D32S8"; }
+std::string supportedDepthFormats(const std::string& api) {
+  std::string names;
+  for (const DepthLayout& layout : depthLayouts())
+    if (layout.api == api && names.find(layout.name + std::string(",")) == std::string::npos)
+      names += std::string(layout.name) + ", ";
+  return names.empty() ? "none" : names.substr(0, names.size() - 2);
+}
 
-std::vector<float> decodeDepth(const TexelImage& image) {
+std::vector<float> decodeDepth(const TexelImage& image, const std::string& api, DepthDecodeFault fault) {
   const size_t pixels = pixelCount(image);
+  bool formatKnown = false;
   for (const DepthLayout& layout : depthLayouts()) {
-    if (image.format != layout.name) continue;
-    for (size_t bpp : layout.bytesPerPixel) {
-      if (image.bytes.size() != pixels * bpp) continue;
-      std::vector<float> depth(pixels);
-      const size_t stride = layout.stride(bpp);
-      for (size_t i = 0; i < pixels; ++i) depth[i] = layout.texel(image.bytes.data() + i * stride);
-      return depth;
-    }
-    throw ImportProblem("--depth", fmt::format("RenderDoc returned {} bytes for the {}x{} {} depth target, which "
-                                               "does not match its layout",
-                                               image.bytes.size(), image.width, image.height, image.format));
+    if (layout.api != api || image.format != layout.name) continue;
+    formatKnown = true;
+    if (image.bytes.size() != pixels * layout.bytesPerPixel) continue;
+    // The test-only fault reads GL's D24 as Vulkan's, the mistake the self-check must catch.
+    const bool misread = fault == DepthDecodeFault::Unorm24LowBits && layout.texel == unorm24High;
+    const auto texel = misread ? unorm24Low : layout.texel;
+    std::vector<float> depth(pixels);
+    for (size_t i = 0; i < pixels; ++i) depth[i] = texel(image.bytes.data() + i * layout.stride);
+    return depth;
   }
-  throw ImportProblem("--depth", fmt::format("depth format {} is not supported (supported: {})", image.format,
-                                             supportedDepthFormats()));
+  if (formatKnown)
+    throw ImportProblem("--depth", fmt::format("RenderDoc returned {} bytes for the {}x{} {} {} depth target, which "
+                                               "does not match a layout measured for it",
+                                               image.bytes.size(), image.width, image.height, api, image.format));
+  throw ImportProblem("--depth", fmt::format("{} depth format {} is not supported (supported for {}: {})", api,
+                                             image.format, api, supportedDepthFormats(api)));
 }
 
 const char* supportedNormalFormats() {

@@ -14,10 +14,16 @@ struct TexelImage {
   std::vector<uint8_t> bytes;
 };
 
-// Depth values as Vulkan defines them: unorm texels c / (2^bits - 1), float texels as they are.
-// Throws ImportProblem (field --depth) for other formats or a size that does not fit the format.
-std::vector<float> decodeDepth(const TexelImage& image);
-const char* supportedDepthFormats();
+// A mistake made on purpose, for the tests that show the self-check catches it.
+enum class DepthDecodeFault { None, Unorm24LowBits };
+
+// Depth values as the API defines them (unorm texels c / (2^bits - 1), float texels as they are),
+// from the bytes RenderDoc returns for that API ("Vulkan", "OpenGL") and format: the layout is
+// chosen by both, never by the byte count alone. Throws ImportProblem (field --depth) for a
+// format not measured for the API or a size that does not fit its layout.
+std::vector<float> decodeDepth(const TexelImage& image, const std::string& api,
+                               DepthDecodeFault fault = DepthDecodeFault::None);
+std::string supportedDepthFormats(const std::string& api);
 
 // Normals, xyz interleaved per pixel. Float targets are taken as they hold them; fixed-point ones
 // are unpacked (unorm: 2c - 1, snorm: c) and normalised (a zero vector stays zero).

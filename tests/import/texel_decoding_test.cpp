@@ -1,5 +1,6 @@
-// Decoding RenderDoc's texel bytes: each depth layout RenderDoc 1.24 returns on lavapipe, and
-// normal encodings, against values worked out by hand.
+// Decoding RenderDoc's texel bytes: each depth layout RenderDoc 1.24 returns for Vulkan (lavapipe)
+// and OpenGL (llvmpipe), chosen by API and format, and normal encodings, against values worked
+// out by hand.
 #include <cmath>
 #include <cstring>
 
@@ -24,34 +25,56 @@ TexelImage image(const char* format, int width, int height, std::vector<uint8_t>
 TEST(DepthDecoding, UnormTexelsFollowVulkansRule) {
   std::vector<uint8_t> d16;
   for (uint16_t v : {uint16_t(0), uint16_t(32768), uint16_t(65535)}) append(d16, v);
-  EXPECT_EQ(decodeDepth(image("D16", 3, 1, d16)), (std::vector<float>{0.0f, 32768.0f / 65535.0f, 1.0f}));
+  EXPECT_EQ(decodeDepth(image("D16", 3, 1, d16), "Vulkan"), (std::vector<float>{0.0f, 32768.0f / 65535.0f, 1.0f}));
+  EXPECT_EQ(decodeDepth(image("D16", 3, 1, d16), "OpenGL"), (std::vector<float>{0.0f, 32768.0f / 65535.0f, 1.0f}));
   std::vector<uint8_t> d24;  // the top byte (X8) is not depth
   for (uint32_t v : {0xAB000000u, 0x00800000u, 0xFFFFFFFFu}) append(d24, v);
-  EXPECT_EQ(decodeDepth(image("D24", 3, 1, d24)), (std::vector<float>{0.0f, 8388608.0f / 16777215.0f, 1.0f}));
+  EXPECT_EQ(decodeDepth(image("D24", 3, 1, d24), "Vulkan"),
+            (std::vector<float>{0.0f, 8388608.0f / 16777215.0f, 1.0f}));
+}
+
+TEST(DepthDecoding, OpenGLsD24IsTheHigh24BitsOfTheSameFourBytes) {
+  std::vector<uint8_t> d24;  // GL: depth << 8 | stencil
+  for (uint32_t v : {0x000000ABu, 0x80000000u, 0xFFFFFF00u}) append(d24, v);
+  const std::vector<float> expected{0.0f, 8388608.0f / 16777215.0f, 1.0f};
+  EXPECT_EQ(decodeDepth(image("D24", 3, 1, d24), "OpenGL"), expected);
+  EXPECT_EQ(decodeDepth(image("D24S8", 3, 1, d24), "OpenGL"), expected);
+  // The same bytes read as Vulkan's layout (the mistake the self-check exists to catch) differ.
+  EXPECT_NE(decodeDepth(image("D24S8", 3, 1, d24), "OpenGL", DepthDecodeFault::Unorm24LowBits), expected);
+  // Vulkan's D24S8 is never 4 bytes a pixel: that size is GL's layout and is refused there.
+  EXPECT_THROW(decodeDepth(image("D24S8", 3, 1, d24), "Vulkan"), ImportProblem);
 }
 
 TEST(DepthDecoding, StencilPlaneAndInterleavedStencilAreSkipped) {
   std::vector<uint8_t> d24s8;  // 4-byte depth texels, then a 1-byte stencil plane
   for (uint32_t v : {0x00000001u, 0x00FFFFFFu}) append(d24s8, v);
   d24s8.insert(d24s8.end(), {0x7F, 0x80});
-  EXPECT_EQ(decodeDepth(image("D24S8", 2, 1, d24s8)), (std::vector<float>{1.0f / 16777215.0f, 1.0f}));
+  EXPECT_EQ(decodeDepth(image("D24S8", 2, 1, d24s8), "Vulkan"), (std::vector<float>{1.0f / 16777215.0f, 1.0f}));
   std::vector<uint8_t> d32s8;  // float depth, stencil and padding per texel
   for (float f : {0.25f, 0.75f}) {
     append(d32s8, f);
     append(d32s8, uint32_t(0xFF));
   }
-  EXPECT_EQ(decodeDepth(image("D32S8", 2, 1, d32s8)), (std::vector<float>{0.25f, 0.75f}));
+  EXPECT_EQ(decodeDepth(image("D32S8", 2, 1, d32s8), "Vulkan"), (std::vector<float>{0.25f, 0.75f}));
+  EXPECT_EQ(decodeDepth(image("D32S8", 2, 1, d32s8), "OpenGL"), (std::vector<float>{0.25f, 0.75f}));
 }
 
 TEST(DepthDecoding, UnknownFormatsAndWrongSizesAreNamed) {
   try {
-    decodeDepth(image("R32_FLOAT", 1, 1, {0, 0, 0, 0}));
+    decodeDepth(image("R32_FLOAT", 1, 1, {0, 0, 0, 0}), "Vulkan");
     FAIL();
   } catch (const ImportProblem& e) {
     EXPECT_EQ(e.field, "--depth");
-    EXPECT_NE(std::string(e.what()).find("R32_FLOAT is not supported (supported: D16"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Vulkan depth format R32_FLOAT is not supported (supported for Vulkan: D16"),
+              std::string::npos) << e.what();
   }
-  EXPECT_THROW(decodeDepth(image("D32", 2, 1, {0, 0, 0, 0})), ImportProblem);
+  EXPECT_THROW(decodeDepth(image("D32", 2, 1, {0, 0, 0, 0}), "Vulkan"), ImportProblem);
+  try {  // an API with no measured layouts is refused, not decoded as another API's
+    decodeDepth(image("D32", 1, 1, {0, 0, 0, 0}), "D3D11");
+    FAIL();
+  } catch (const ImportProblem& e) {
+    EXPECT_NE(std::string(e.what()).find("(supported for D3D11: none)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(NormalDecoding, FloatTargetsAreTakenAsTheyAre) {

@@ -17,82 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
+#include "import_test_support.h"
 #include "scene.h"
 
 namespace aor::rdtest {
 namespace {
-namespace fs = std::filesystem;
-
-struct Command {
-  int exitCode = -1;
-  std::string output;
-};
-
-Command run(const std::string& command) {
-  Command result;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-Command aoreplay(const std::string& arguments, const std::string& environment = "") {
-  return run(fmt::format("{} {} {}", environment, AOR_EXE, arguments));
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(AOR_BINARY_DIR) / "renderdoc-tests" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-template <typename T>
-std::vector<T> readBinary(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-  return values;
-}
-
-std::string readBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
-
-nlohmann::json readJson(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-glm::mat4 matrixOf(const nlohmann::json& a) {
-  glm::mat4 m;
-  for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = a.at(size_t(i)).get<float>();
-  return m;
-}
-
-bool sameBits(const glm::mat4& a, const glm::mat4& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-float halfToFloat(uint16_t h) {
-  const int e = (h >> 10) & 0x1F, m = h & 0x3FF;
-  const float s = (h & 0x8000) ? -1.0f : 1.0f;
-  if (e == 0) return s * std::ldexp(float(m), -24);
-  return s * std::ldexp(float(m | 0x400), e - 25);
-}
-
-// rd_scene's frames: captures in DIR/captures, read-back in DIR/readback.
-fs::path renderScene(const std::string& name, const std::string& format, bool reversed, int frames = 1) {
-  const fs::path dir = scratch(name);
-  const Command c = run(fmt::format("{} --depth-format {} {} --frames {} --capture-dir {} --readback-dir {}",
-                                    RD_SCENE_EXE, format, reversed ? "--reversed" : "", frames,
-                                    (dir / "captures").string(), (dir / "readback").string()));
-  EXPECT_EQ(c.exitCode, 0) << c.output;
-  return dir;
-}
 
 const char* kCamera = "--view camera.view --projection camera.projection";
 // rd_scene's event IDs as RenderDoc 1.24 numbers them: the G-buffer pass draws the floor, then
@@ -324,7 +253,7 @@ TEST_F(BadInput, MissingMemberListsTheMembers) {
   const fs::path dir = scratch("missing-member");
   expectRefused(dir, fmt::format("{} --view camera.world_to_view --projection camera.projection", rdc().string()),
                 {"frame 0: field \"--view\": uniform block camera (vertex shader) has no member world_to_view; its "
-                 "members: view (float4x4), projection (float4x4), tint (float4)"});
+                 "members: view (float4x4), projection (float4x4), tint (float4), light_projection (float4x4)"});
 }
 
 TEST_F(BadInput, MissingBlockListsTheBlocks) {
@@ -387,7 +316,7 @@ TEST_F(BadInput, SameMemberForBothMatrices) {
   const fs::path dir = scratch("same-member");
   expectRefused(dir, fmt::format("{} --view camera.view --projection camera.view", rdc().string()),
                 {"depth: gbuffer.depth (id", "--view and --projection both name camera.view: a combined matrix is not "
-                 "supported", "camera [vertex shader: view (float4x4), projection (float4x4), tint (float4)]"});
+                 "supported", "camera [vertex shader: view (float4x4), projection (float4x4), tint (float4), light_projection (float4x4)]"});
 }
 
 TEST_F(BadInput, EarlierCaptureAtOutIsLeftAsItWas) {

@@ -418,6 +418,8 @@ void SceneRenderer::State::record(const Camera& camera) {
   std::memcpy(u + 64, glm::value_ptr(projectionRows), 64);
   const float tint[4] = {1, 1, 1, 1};
   std::memcpy(u + 128, tint, 16);
+  const glm::mat4 light = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 0.5f, 20.0f);
+  std::memcpy(u + 144, glm::value_ptr(light), 64);
 
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -518,7 +520,7 @@ SceneRenderer::SceneRenderer(const RenderOptions& options) : s_(std::make_unique
   s.gbufferFramebuffer = s.createFramebuffer(s.gbufferPass, {s.normals.view, s.depth.view});
   s.overlayFramebuffer = s.createFramebuffer(s.overlayPass, {s.overlay.view});
   const size_t pixels = size_t(options.width) * size_t(options.height);
-  s.uniforms = s.createBuffer(144, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  s.uniforms = s.createBuffer(208, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   s.extra = s.createBuffer(64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   const glm::mat4 identity(1.0f);
   std::memcpy(s.extra.mapped, glm::value_ptr(identity), 64);

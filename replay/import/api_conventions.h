@@ -1,0 +1,34 @@
+#pragma once
+// How a captured API maps clip space to the depth target's texels, as RenderDoc reports it for the
+// draw (never assumed from the byte count or the format), and the exact changes that bring a
+// frame to the capture format's conventions (captures/FORMAT.md: Vulkan's clip z in [0, 1], row 0
+// at the top, NDC y = -1 there).
+#include <string>
+
+#include <glm/mat4x4.hpp>
+
+namespace aor {
+
+struct ApiConventions {
+  std::string api;                  // RenderDoc's driver name: "Vulkan", "OpenGL"
+  bool clipZMinusOneToOne = false;  // GL's default; Vulkan with VK_EXT_depth_clip_control
+  bool clipOriginUpperLeft = false; // GL: glClipControl(GL_UPPER_LEFT, ...): NDC y = +1 at window row 0
+  bool rowsBottomUp = false;        // GL: window row 0 (the first texel row) is the picture's bottom
+};
+
+// The draw's viewport as the API states it, in texel rows of the depth target (GL: from its
+// first row, the bottom; Vulkan: from the top, the height may be negative).
+struct RawViewport {
+  float x = 0, y = 0, width = 0, height = 0;
+};
+
+// The texel row coordinate (continuous, 0 = the first row's edge) that NDC y lands on.
+double windowRow(const ApiConventions& c, const RawViewport& v, double ndcY);
+// The window depth in [0, 1] of NDC z (GL's [-1, 1] range halved; depth range [0, 1] assumed).
+double windowDepth(const ApiConventions& c, double ndcZ);
+
+// The projection's depth row brought from clip z in [-1, 1] to [0, 1] (row2' = (row2 + row3) / 2),
+// which leaves x, y and w as they are; unchanged for [0, 1].
+glm::mat4 projectionToZeroToOne(const ApiConventions& c, const glm::mat4& projection);
+
+}  // namespace aor

@@ -1,0 +1,418 @@
+// rd_gl_scene: rd_scene's known scene (scene.h) drawn through OpenGL 3.3 core profile (Xlib + GLX,
+// functions through libepoxy), for the RenderDoc import's OpenGL side. It renders into a
+// framebuffer object, captures each frame through RenderDoc's in-application API and writes its
+// own read-back beside the captures:
+//   CAPTURE_DIR/NNNN.rdc        RenderDoc capture of frame N
+//   READBACK_DIR/NNNN.depth     glReadPixels(GL_DEPTH_COMPONENT, GL_FLOAT): width*height floats,
+//                               little-endian, GL's row order (row 0 is window y 0, the bottom)
+//   READBACK_DIR/NNNN.normals   the RGBA16F normal target's bits (width*height*4 halves), same order
+//   READBACK_DIR/NNNN.json      width, height, depth format, clip_control, reversed, view and
+//                               projection (column-major, exactly what was uploaded)
+// Usage: rd_gl_scene --depth-format d16|d24|d24s8|d32f|d32fs8 [--clip-control] [--reversed] [--last-draw-points]
+//                    [--size WxH] [--frames N] [--capture-dir DIR] --readback-dir DIR
+// Projection: by default GL's own conventions (clip z in [-1, 1], y up, glm::perspectiveRH_NO);
+// --clip-control calls glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE) and uploads scene.h's
+// [0, 1], y-down projection, so the picture stays upright; --reversed (only with --clip-control)
+// reverses depth (clear 0, GL_GREATER). A stencil aspect is cleared to 0xA5 and left alone.
+//
+// RenderDoc hooks OpenGL by interposing the GLX entry points and dlopen, so librenderdoc.so must
+// be in the process before libepoxy opens libGL: with --capture-dir the program re-executes
+// itself with librenderdoc.so in LD_PRELOAD (unless RenderDoc is already there, e.g. when run
+// under renderdoccmd), then uses the in-application API's StartFrameCapture/EndFrameCapture.
+// The whole program needs an X display; headless, run it under `xvfb-run -a`.
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <renderdoc_app.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "scene.h"
+
+// Last: Xlib.h (through epoxy/glx.h) defines macros such as None, Bool and Status.
+#include <epoxy/gl.h>
+#include <epoxy/glx.h>
+
+namespace fs = std::filesystem;
+using namespace aor::rdtest;
+
+namespace {
+
+// The GLSL sources (shaders/gl_scene.vert, .frag), embedded by CMake.
+#include "gl_scene_shaders.inc"
+
+struct DepthFormat {
+  GLenum internalFormat, format, type;
+  bool stencil;
+};
+
+const std::map<std::string, DepthFormat>& depthFormats() {
+  static const std::map<std::string, DepthFormat> formats = {
+      {"d16", {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT, false}},
+      {"d24", {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, false}},
+      {"d24s8", {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, true}},
+      {"d32f", {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, false}},
+      {"d32fs8", {GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV, true}}};
+  return formats;
+}
+
+struct Options {
+  std::string depthFormatName;
+  bool clipControl = false, reversed = false;
+  bool lastDrawPoints = false;  // the last box drawn as points: a draw the self-check cannot follow
+  int width = 160, height = 90, frames = 1;
+  fs::path captureDir, readbackDir;
+};
+
+[[noreturn]] void usage(const std::string& problem) {
+  std::fprintf(stderr, "rd_gl_scene: %s\n", problem.c_str());
+  std::exit(2);
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--depth-format") {
+      o.depthFormatName = value();
+      if (!depthFormats().count(o.depthFormatName)) usage("unknown depth format " + o.depthFormatName);
+    } else if (a == "--clip-control") {
+      o.clipControl = true;
+    } else if (a == "--last-draw-points") {
+      o.lastDrawPoints = true;
+    } else if (a == "--reversed") {
+      o.reversed = true;
+    } else if (a == "--size") {
+      if (std::sscanf(value().c_str(), "%dx%d", &o.width, &o.height) != 2) usage("--size is WxH");
+    } else if (a == "--frames") {
+      o.frames = std::atoi(value().c_str());
+    } else if (a == "--capture-dir") {
+      o.captureDir = value();
+    } else if (a == "--readback-dir") {
+      o.readbackDir = value();
+    } else {
+      usage("unknown argument " + a);
+    }
+  }
+  if (o.depthFormatName.empty()) usage("--depth-format is required");
+  if (o.readbackDir.empty()) usage("--readback-dir is required");
+  if (o.frames < 1 || o.width < 1 || o.height < 1) usage("bad --frames or --size");
+  if (o.reversed && !o.clipControl) usage("--reversed needs --clip-control (depth in [0, 1])");
+  return o;
+}
+
+// Makes sure librenderdoc.so is loaded ahead of every GL library: if it is not in the process yet,
+// re-execute this program with it in LD_PRELOAD. Returns the in-application API.
+constexpr const char* kPreloadMarker = "RD_GL_SCENE_RENDERDOC_PRELOADED";
+
+RENDERDOC_API_1_6_0* preloadRenderDoc(char** argv) {
+  auto getApi = reinterpret_cast<pRENDERDOC_GetAPI>(dlsym(RTLD_DEFAULT, "RENDERDOC_GetAPI"));
+  if (!getApi) {
+    if (std::getenv(kPreloadMarker)) usage("librenderdoc.so in LD_PRELOAD did not load (Debian: librenderdoc)");
+    std::string preload = "librenderdoc.so";
+    if (const char* old = std::getenv("LD_PRELOAD"); old && *old) preload += std::string(":") + old;
+    setenv("LD_PRELOAD", preload.c_str(), 1);
+    setenv(kPreloadMarker, "1", 1);
+    execv("/proc/self/exe", argv);
+    usage(std::string("cannot re-execute with librenderdoc.so preloaded: ") + std::strerror(errno));
+  }
+  unsetenv(kPreloadMarker);  // nothing this program starts should inherit the hook
+  RENDERDOC_API_1_6_0* api = nullptr;
+  if (!getApi(eRENDERDOC_API_Version_1_6_0, reinterpret_cast<void**>(&api)) || !api)
+    usage("librenderdoc.so has no usable RENDERDOC_GetAPI 1.6.0");
+  return api;
+}
+
+// A GL 3.3 core profile context on an (unmapped) X window; the scene goes into an FBO anyway.
+struct GlContext {
+  Display* display = nullptr;
+  Window window = 0;
+  Colormap colormap = 0;
+  GLXContext context = nullptr;
+
+  GlContext() {
+    display = XOpenDisplay(nullptr);
+    if (!display) throw std::runtime_error("cannot open the X display (headless: run under xvfb-run -a)");
+    const int screen = DefaultScreen(display);
+    if (!epoxy_has_glx_extension(display, screen, "GLX_ARB_create_context_profile"))
+      throw std::runtime_error("GLX_ARB_create_context_profile is missing");
+    const int fbAttributes[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE,
+                                GLX_RGBA_BIT, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8,
+                                GLX_DOUBLEBUFFER, True, 0};
+    int count = 0;
+    GLXFBConfig* configs = glXChooseFBConfig(display, screen, fbAttributes, &count);
+    if (!configs || count == 0) throw std::runtime_error("no suitable GLXFBConfig");
+    const GLXFBConfig config = configs[0];
+    XFree(configs);
+    XVisualInfo* visual = glXGetVisualFromFBConfig(display, config);
+    if (!visual) throw std::runtime_error("no X visual for the GLXFBConfig");
+    XSetWindowAttributes attributes{};
+    colormap = XCreateColormap(display, RootWindow(display, screen), visual->visual, AllocNone);
+    attributes.colormap = colormap;
+    window = XCreateWindow(display, RootWindow(display, screen), 0, 0, 64, 64, 0, visual->depth, InputOutput,
+                           visual->visual, CWColormap, &attributes);
+    XFree(visual);
+    const int contextAttributes[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
+                                     GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, 0};
+    context = glXCreateContextAttribsARB(display, config, nullptr, True, contextAttributes);
+    if (!context) throw std::runtime_error("glXCreateContextAttribsARB (3.3 core) failed");
+    if (!glXMakeCurrent(display, window, context)) throw std::runtime_error("glXMakeCurrent failed");
+  }
+  ~GlContext() {
+    if (context) {
+      glXMakeCurrent(display, 0, nullptr);
+      glXDestroyContext(display, context);
+    }
+    if (window) XDestroyWindow(display, window);
+    if (colormap) XFreeColormap(display, colormap);
+    if (display) XCloseDisplay(display);
+  }
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+};
+
+void checkGl(const char* where) {
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+    char text[96];
+    std::snprintf(text, sizeof text, "GL error 0x%04x %s", e, where);
+    throw std::runtime_error(text);
+  }
+}
+
+GLuint compile(GLenum stage, const char* source) {
+  const GLuint shader = glCreateShader(stage);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("shader compile: ") + log);
+  }
+  return shader;
+}
+
+constexpr GLint kClearStencil = 0xA5;
+
+struct SceneGl {
+  GLuint program = 0, vao = 0, vertexBuffer = 0, uniformBuffer = 0;
+  GLuint framebuffer = 0, normalTexture = 0, depthTexture = 0;
+  GLint modelLocation = -1;
+  std::vector<uint32_t> firstVertex;
+
+  SceneGl(const Options& o) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, kGlSceneVert), frag = compile(GL_FRAGMENT_SHADER, kGlSceneFrag);
+    program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, frag);
+    glLinkProgram(program);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[2048];
+      glGetProgramInfoLog(program, sizeof log, nullptr, log);
+      throw std::runtime_error(std::string("program link: ") + log);
+    }
+    glDeleteShader(vs);
+    glDeleteShader(frag);
+    const GLuint block = glGetUniformBlockIndex(program, "SceneData");
+    if (block == GL_INVALID_INDEX) throw std::runtime_error("no uniform block SceneData");
+    glUniformBlockBinding(program, block, 0);
+    modelLocation = glGetUniformLocation(program, "model");
+    if (modelLocation < 0) throw std::runtime_error("no uniform model");
+
+    const SceneMesh mesh = sceneMesh();
+    firstVertex = mesh.firstVertex;
+    static_assert(sizeof(Vertex) == 24);
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vertexBuffer);
+    glBindBuffer(GL_ARRAY_BUFFER, vertexBuffer);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(Vertex)), mesh.vertices.data(),
+                 GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, position)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, normal)));
+    glBindVertexArray(0);
+
+    glGenBuffers(1, &uniformBuffer);
+    glBindBuffer(GL_UNIFORM_BUFFER, uniformBuffer);
+    glBufferData(GL_UNIFORM_BUFFER, 3 * sizeof(glm::mat4), nullptr, GL_DYNAMIC_DRAW);
+
+    const DepthFormat& d = depthFormats().at(o.depthFormatName);
+    auto texture = [&](GLenum internalFormat, GLenum format, GLenum type) {
+      GLuint t = 0;
+      glGenTextures(1, &t);
+      glBindTexture(GL_TEXTURE_2D, t);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+      glTexImage2D(GL_TEXTURE_2D, 0, GLint(internalFormat), o.width, o.height, 0, format, type, nullptr);
+      return t;
+    };
+    normalTexture = texture(GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT);
+    depthTexture = texture(d.internalFormat, d.format, d.type);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glGenFramebuffers(1, &framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, normalTexture, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, d.stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
+                           GL_TEXTURE_2D, depthTexture, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("the framebuffer is incomplete for " + o.depthFormatName);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    checkGl("creating the scene's objects");
+  }
+
+  // One frame: clear, a draw per object (floor, then each box), glFinish.
+  void render(const Options& o, const Camera& camera) {
+    const DepthFormat& d = depthFormats().at(o.depthFormatName);
+    if (o.clipControl) glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+    glBindBuffer(GL_UNIFORM_BUFFER, uniformBuffer);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof(glm::mat4), glm::value_ptr(camera.view));
+    glBufferSubData(GL_UNIFORM_BUFFER, sizeof(glm::mat4), sizeof(glm::mat4), glm::value_ptr(camera.projection));
+    const glm::mat4 light = glm::perspectiveRH_NO(glm::radians(90.0f), 1.0f, 0.5f, 20.0f);
+    glBufferSubData(GL_UNIFORM_BUFFER, 2 * sizeof(glm::mat4), sizeof(glm::mat4), glm::value_ptr(light));
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, uniformBuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    const GLenum drawBuffer = GL_COLOR_ATTACHMENT0;
+    glDrawBuffers(1, &drawBuffer);
+    glViewport(0, 0, o.width, o.height);
+    glDepthRange(0.0, 1.0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(o.reversed ? GL_GREATER : GL_LESS);
+    glDisable(GL_CULL_FACE);
+    const GLfloat clearNormal[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, clearNormal);
+    const GLfloat clearDepth = o.reversed ? 0.0f : 1.0f;
+    if (d.stencil)  // a stencil value whose bits cannot pass for depth's (nothing tests stencil)
+      glClearBufferfi(GL_DEPTH_STENCIL, 0, clearDepth, kClearStencil);
+    else
+      glClearBufferfv(GL_DEPTH, 0, &clearDepth);
+    glUseProgram(program);
+    glBindVertexArray(vao);
+    const glm::mat4 model(1.0f);
+    for (size_t object = 0; object + 1 < firstVertex.size(); ++object) {
+      glUniformMatrix4fv(modelLocation, 1, GL_FALSE, glm::value_ptr(model));
+      const bool points = o.lastDrawPoints && object + 2 == firstVertex.size();
+      glDrawArrays(points ? GL_POINTS : GL_TRIANGLES, GLint(firstVertex[object]), GLsizei(firstVertex[object + 1] - firstVertex[object]));
+    }
+    glBindVertexArray(0);
+    glFinish();
+    checkGl("rendering the frame");
+  }
+
+  // GL's row order: row 0 is window y 0 (the bottom).
+  void readBack(const Options& o, std::vector<float>& depth, std::vector<uint16_t>& normalsHalf) {
+    depth.assign(size_t(o.width) * size_t(o.height), 0.0f);
+    normalsHalf.assign(size_t(o.width) * size_t(o.height) * 4, 0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, o.width, o.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, o.width, o.height, GL_RGBA, GL_HALF_FLOAT, normalsHalf.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    checkGl("reading the frame back");
+  }
+};
+
+// GL's conventions by default; with glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE) scene.h's own
+// [0, 1], y-down projection (the y flip of GL_UPPER_LEFT undoes its y-down, so it stays upright).
+Camera glCamera(const Options& o, int frame) {
+  Camera c = sceneCamera(frame, o.width, o.height, o.reversed);
+  if (!o.clipControl)
+    c.projection = glm::perspectiveRH_NO(glm::radians(kVerticalFovDegrees), float(o.width) / float(o.height),
+                                         kNear, kFar);
+  return c;
+}
+
+template <typename T>
+void writeBinary(const fs::path& path, const std::vector<T>& values) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(T)));
+  if (!out) usage("cannot write " + path.string());
+}
+
+nlohmann::json matrixJson(const glm::mat4& m) {
+  auto a = nlohmann::json::array();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) a.push_back(double(m[c][r]));
+  return a;
+}
+
+// RenderDoc names its files after a template; the tests want NNNN.rdc.
+void moveNewestCapture(RENDERDOC_API_1_6_0* api, const fs::path& target) {
+  const uint32_t count = api->GetNumCaptures();
+  if (count == 0) usage("RenderDoc made no capture");
+  uint32_t length = 0;
+  api->GetCapture(count - 1, nullptr, &length, nullptr);
+  std::string path(length, '\0');
+  api->GetCapture(count - 1, path.data(), &length, nullptr);
+  path.resize(std::strlen(path.c_str()));
+  fs::rename(path, target);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parseOptions(argc, argv);
+  RENDERDOC_API_1_6_0* api = nullptr;
+  if (!o.captureDir.empty()) api = preloadRenderDoc(argv);  // may re-execute; before any GL call
+  try {
+    fs::create_directories(o.readbackDir);
+    if (api) {
+      fs::create_directories(o.captureDir);
+      api->SetCaptureFilePathTemplate((o.captureDir / "rd_gl_scene").c_str());
+    }
+    GlContext gl;
+    SceneGl scene(o);
+    for (int frame = 0; frame < o.frames; ++frame) {
+      const Camera camera = glCamera(o, frame);
+      void* device = gl.context;  // RenderDoc's device pointer for GL is the context handle
+      if (api) api->StartFrameCapture(device, nullptr);
+      scene.render(o, camera);
+      char stem[16];
+      std::snprintf(stem, sizeof stem, "%04d", frame);
+      if (api) {
+        if (!api->EndFrameCapture(device, nullptr)) usage("RenderDoc did not end the frame capture");
+        moveNewestCapture(api, o.captureDir / (std::string(stem) + ".rdc"));
+      }
+      std::vector<float> depth;
+      std::vector<uint16_t> normalsHalf;
+      scene.readBack(o, depth, normalsHalf);
+      writeBinary(o.readbackDir / (std::string(stem) + ".depth"), depth);
+      writeBinary(o.readbackDir / (std::string(stem) + ".normals"), normalsHalf);
+      nlohmann::json meta = {{"width", o.width},
+                             {"height", o.height},
+                             {"depth_format", o.depthFormatName},
+                             {"clip_control", o.clipControl},
+                             {"reversed", o.reversed},
+                             {"view", matrixJson(camera.view)},
+                             {"projection", matrixJson(camera.projection)}};
+      std::ofstream(o.readbackDir / (std::string(stem) + ".json")) << meta.dump(2) << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rd_gl_scene: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

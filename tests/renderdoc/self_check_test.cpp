@@ -1,0 +1,173 @@
+// The import's self-check (replay/import/self_check.h) on frames of two programs: rd_scene
+// (Vulkan) and rd_gl_scene (OpenGL 3.3 core, rendered under xvfb-run; the import replays it
+// headless). Correct imports pass with their figures in capture.json; each mistake made on
+// purpose (a test-only fault, or a wrong --projection) exits 2 naming what disagreed and leaves
+// no --out; OpenGL frames import upright, in the capture format's depth convention, to the
+// capture the Vulkan frame of the same scene imports to.
+#include <unistd.h>
+
+#include "capture/capture.h"
+#include "import_test_support.h"
+#include "scene.h"
+
+namespace aor::rdtest {
+namespace {
+
+const char* kVulkanCamera = "--view camera.view --projection camera.projection";
+const char* kGlCamera = "--view SceneData.view --projection SceneData.projection";
+constexpr int kWidth = 160, kHeight = 90;
+
+// rd_gl_scene's frame 0 at 160x90: DIR/captures/0000.rdc, DIR/readback/0000.{depth,json}.
+fs::path renderGlScene(const std::string& name, const std::string& format, const std::string& mode) {
+  const fs::path dir = scratch(name);
+  const Command c = run(fmt::format("xvfb-run -a {} --depth-format {} {} --size {}x{} --capture-dir {} --readback-dir {}",
+                                    RD_GL_SCENE_EXE, format, mode, kWidth, kHeight, (dir / "captures").string(),
+                                    (dir / "readback").string()));
+  EXPECT_EQ(c.exitCode, 0) << c.output;
+  return dir;
+}
+
+Command import(const fs::path& sceneDir, const std::string& out, const std::string& arguments) {
+  return aoreplay(fmt::format("import renderdoc {} --out {} {}", (sceneDir / "captures" / "0000.rdc").string(),
+                              (sceneDir / out).string(), arguments));
+}
+
+nlohmann::json selfCheckOf(const fs::path& capture) {
+  return readJson(capture / "capture.json").at("scene").at("frames").at(0).at("self_check");
+}
+
+void expectPassed(const Command& c, const fs::path& capture) {
+  ASSERT_EQ(c.exitCode, 0) << c.output;
+  EXPECT_NE(c.output.find(" 0 disagree"), std::string::npos) << c.output;
+  const nlohmann::json check = selfCheckOf(capture);
+  EXPECT_GE(check.at("matched").get<int>(), 16) << check;
+  EXPECT_EQ(check.at("disagreed"), 0) << check;
+  EXPECT_LT(check.at("depth_row_residual").get<double>(), 1e-4) << check;
+  EXPECT_EQ(check.at("vertices_on_screen"), check.at("vertices")) << "the last box is whole on screen";
+  std::printf("%s\n", c.output.substr(c.output.find("self-check:")).c_str());
+}
+
+void expectCaught(const Command& c, const fs::path& out, const std::vector<std::string>& says) {
+  EXPECT_EQ(c.exitCode, 2) << c.output;
+  for (const std::string& s : says) EXPECT_NE(c.output.find(s), std::string::npos) << s << "\n" << c.output;
+  EXPECT_FALSE(fs::exists(out)) << "a failed self-check leaves no capture";
+}
+
+TEST(SelfCheck, VulkanFramePassesAndEachMistakeIsCaught) {
+  const fs::path dir = renderScene(fmt::format("self-check-vk-{}", getpid()), "d24s8", false);
+  expectPassed(import(dir, "ok", kVulkanCamera), dir / "ok");
+  expectCaught(import(dir, "rows", std::string(kVulkanCamera) + " --test-only-fault rows"), dir / "rows",
+               {"field \"--depth\": self-check failed: the imported depth disagrees with what the draw wrote",
+                "its row order (flipped: yes)"});
+  expectCaught(import(dir, "light", "--view camera.view --projection camera.light_projection"), dir / "light",
+               {"field \"--projection\": self-check failed: camera.light_projection does not give the draw's "
+                "vertices their clip-space z"});
+}
+
+TEST(SelfCheck, NotPossibleIsRefusedUnlessSkippedAndThenRecorded) {
+  const fs::path dir = renderGlScene(fmt::format("self-check-points-{}", getpid()), "d32f", "--last-draw-points");
+  expectCaught(import(dir, "refused", kGlCamera), dir / "refused",
+               {"field \"--no-self-check\": self-check not possible: the draw's topology is PointList, not triangles"});
+  const Command skipped = import(dir, "skipped", std::string(kGlCamera) + " --no-self-check");
+  ASSERT_EQ(skipped.exitCode, 0) << skipped.output;
+  EXPECT_NE(skipped.output.find("self-check: skipped (--no-self-check)"), std::string::npos) << skipped.output;
+  EXPECT_EQ(selfCheckOf(dir / "skipped").at("skipped"), "--no-self-check");
+}
+
+struct GlCase {
+  const char* format;       // rd_gl_scene's
+  const char* vulkanFormat; // rd_scene's for the same storage
+  const char* mode;         // rd_gl_scene's clip flags
+  bool reversed;
+  double quantum;
+};
+
+void PrintTo(const GlCase& c, std::ostream* os) { *os << c.format << " " << c.mode; }
+
+class GlFrame : public ::testing::TestWithParam<GlCase> {};
+
+// Depth per pixel of the two imports agree away from silhouettes: the same scene, rasterised by
+// the same Mesa rasteriser through two APIs, in the capture's one convention.
+void expectSameAsVulkan(const GBuffer& gl, const GBuffer& vk, double quantum) {
+  size_t compared = 0, differ = 0;
+  for (int y = 1; y + 1 < kHeight; ++y)
+    for (int x = 1; x + 1 < kWidth; ++x) {
+      const size_t i = size_t(y * kWidth + x);
+      bool flat = true;  // no depth step around the pixel (silhouettes may round either way)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          flat = flat && std::abs(vk.depth[i + size_t(dy * kWidth + dx)] - vk.depth[i]) < 1e-3f;
+      if (!flat) continue;
+      ++compared;
+      differ += std::abs(double(gl.depth[i]) - double(vk.depth[i])) > 2.0 * quantum + 1e-6;
+    }
+  EXPECT_GT(compared, 10000u);
+  EXPECT_LE(differ, compared / 100) << differ << " of " << compared << " pixels differ from the Vulkan frame's";
+}
+
+TEST_P(GlFrame, ImportsUprightInTheCaptureConventionAndPassesTheCheck) {
+  const GlCase& c = GetParam();
+  const std::string name = fmt::format("self-check-gl-{}-{}{}", c.format, c.mode[0] ? "clip-control" : "default",
+                                       c.reversed ? "-reversed" : "");
+  const fs::path dir = renderGlScene(name, c.format, c.mode);
+  const Command r = import(dir, "imported", kGlCamera);
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("OpenGL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rows bottom-up, flipped"), std::string::npos) << r.output;
+
+  const Capture capture = loadCapture(dir / "imported");
+  const GBuffer g = loadGBuffer(capture, 0);
+  const std::vector<float> readBack = readBinary<float>(dir / "readback" / "0000.depth");  // GL rows: bottom first
+  ASSERT_EQ(g.depth.size(), readBack.size());
+  double worst = 0.0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      worst = std::max(worst, std::abs(double(g.depth[size_t(y * kWidth + x)]) -
+                                       double(readBack[size_t((kHeight - 1 - y) * kWidth + x)])));
+  EXPECT_LE(worst, c.quantum * 0.5 + 1e-7) << "the imported depth is glReadPixels' with its rows turned top-down";
+
+  // The camera: scene.h's view bit for bit, and its Vulkan projection ([0, 1], y down).
+  const Camera camera = sceneCamera(0, kWidth, kHeight, c.reversed);
+  EXPECT_TRUE(sameBits(capture.frames[0].view, camera.view));
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row)
+      EXPECT_NEAR(capture.frames[0].projection[col][row], camera.projection[col][row],
+                  1e-6 * std::abs(camera.projection[col][row]))
+          << "projection[" << col << "][" << row << "]";
+
+  const fs::path vk = renderScene(name + "-vulkan", c.vulkanFormat, c.reversed);
+  const Command v = import(vk, "imported", kVulkanCamera);
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  const Capture vkCapture = loadCapture(vk / "imported");
+  expectSameAsVulkan(g, loadGBuffer(vkCapture, 0), c.quantum);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Formats, GlFrame,
+    ::testing::Values(GlCase{"d16", "d16", "", false, 1.0 / 65535}, GlCase{"d24", "x8d24", "", false, 1.0 / 16777215},
+                      GlCase{"d24s8", "d24s8", "", false, 1.0 / 16777215}, GlCase{"d32f", "d32", "", false, 6e-8},
+                      GlCase{"d32fs8", "d32s8", "", false, 6e-8},
+                      GlCase{"d24s8", "d24s8", "--clip-control", false, 1.0 / 16777215},
+                      GlCase{"d32f", "d32", "--clip-control --reversed", true, 6e-8}),
+    [](const auto& info) {
+      std::string mode = info.param.mode[0] ? (info.param.reversed ? "_clip_control_reversed" : "_clip_control") : "";
+      return std::string(info.param.format) + mode;
+    });
+
+// Each mistake the import once made on GL frames (README's "The self-check"), made on purpose.
+TEST(SelfCheck, EachGlMistakeIsCaught) {
+  const fs::path dir = renderGlScene(fmt::format("self-check-gl-faults-{}", getpid()), "d24s8", "");
+  const std::string fault = std::string(kGlCamera) + " --test-only-fault ";
+  const std::string disagrees = "field \"--depth\": self-check failed: ";
+  expectCaught(import(dir, "rows", fault + "rows"), dir / "rows", {disagrees, "its row order (flipped: no)"});
+  expectCaught(import(dir, "d24", fault + "d24-low-bits"), dir / "d24", {disagrees, "(OpenGL D24S8)"});
+  expectCaught(import(dir, "clip", fault + "clip-z"), dir / "clip", {disagrees, "(clip z in [0, 1])"});
+  expectCaught(import(dir, "light", "--view SceneData.view --projection SceneData.light_projection"), dir / "light",
+               {"field \"--projection\": self-check failed: SceneData.light_projection does not give"});
+  const fs::path upperLeft = renderGlScene(fmt::format("self-check-gl-clip-control-{}", getpid()), "d32f",
+                                           "--clip-control");
+  expectCaught(import(upperLeft, "rows", fault + "rows"), upperLeft / "rows", {disagrees, "(flipped: no)"});
+}
+
+}  // namespace
+}  // namespace aor::rdtest
