@@ -22,7 +22,7 @@ namespace aor {
 inline constexpr double kSelfCheckMaxDepthRowResidual = 1e-4;  // NDC units, (a)
 inline constexpr size_t kSelfCheckMinPoints = 16;              // unoccluded points, (b)
 inline constexpr double kSelfCheckMinMatchFraction = 0.9;      // of the unoccluded points, (b)
-inline constexpr int kSelfCheckPointsPerTriangle = 64;         // at most, spread over it
+inline constexpr int kSelfCheckPointsPerTriangle = 256;        // at most, spread over it
 
 struct SelfCheckInput {
   std::vector<glm::vec4> corners;  // clip x, y, z, w; three per triangle
