@@ -39,6 +39,7 @@ struct SweepArgs {
   int warmup = 1;
   std::string out;
   std::string device;
+  SweepRank rank = SweepRank::Rmse;
 };
 
 // Reference visibility per frame index: the capture's ray-traced one when every replayed frame
@@ -89,6 +90,10 @@ SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions option
   row.error = errors.summaryJson();
   row.rmse = row.error["rmse"].get<double>();
   row.ssim = row.error["ssim"].get<double>();
+  const auto& band = row.error["halo_band"];
+  row.haloPixels = band["pixels"].get<int64_t>();
+  row.haloRmse = band["rmse"].get<double>();
+  row.haloBias = band["bias"].get<double>();
   for (const auto& frame : result.frames)
     if (auto spp = frame.techniqueValues.find("accumulated_spp"); spp != frame.techniqueValues.end()) {
       row.sppMin = row.sppMin == 0 ? spp->second : std::min(row.sppMin, spp->second);
@@ -137,7 +142,7 @@ int sweepCommand(const SweepArgs& args) {
   OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out),
                       ResultKind::Sweep, {capture.folder});
 
-  SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup};
+  SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup, args.rank};
   std::vector<SweepRow> rows;
   {
     std::vector<Settings> runs;
@@ -155,7 +160,7 @@ int sweepCommand(const SweepArgs& args) {
       rows.push_back(measure(context.vk, capture, options, configs[i], reference));
     }
   }
-  markPareto(rows);
+  markPareto(rows, args.rank);
   writeJson(out.staging() / "sweep.json", sweepJson(info, rows));
   writeText(out.staging() / "sweep.csv", sweepCsv(rows));
   writeText(out.staging() / "sweep.svg", sweepSvg(info, rows));
@@ -191,6 +196,12 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
   cmd->add_option("--device", args->device, kDeviceHelp);
+  cmd->add_option("--rank-by", args->rank,
+                  "the error the plot and the Pareto front use: rmse (every surface pixel) or halo_band (the "
+                  "background behind nearer silhouettes, metrics.error.halo_band)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, SweepRank>{{"rmse", SweepRank::Rmse},
+                                                                           {"halo_band", SweepRank::HaloBand}}))
+      ->default_str("rmse");
   cmd->footer(fmt::format("Keys of technique {} (aoreplay techniques lists every technique's):\n{}", help.name,
                           keyTable(help)));
   handlers()["sweep"] = [args] { return sweepCommand(*args); };

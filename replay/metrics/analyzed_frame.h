@@ -21,6 +21,7 @@ struct AnalyzedFrame {
   const std::vector<float>* reference = nullptr;  // ground-truth visibility, when the capture has it
   float historyWeight = 0.0f;          // the run's `temporal` setting (EMA history weight)
   const float* noHistory = nullptr;   // this frame replayed with temporal=0, when the run made that replay
+  float bandRadius = 1.0f;            // the halo band's AO radius: the capture's scene.ao_radius, else 1
 };
 
 }  // namespace aor

@@ -5,7 +5,9 @@
 #include <limits>
 #include <vector>
 
+#include "metrics/depth.h"
 #include "metrics/flip.h"
+#include "metrics/halo_band.h"
 #include "metrics/percentile.h"
 
 namespace aor {
@@ -119,17 +121,41 @@ ErrorMetrics computeErrorMetrics(const float* output, const float* reference, co
   return m;
 }
 
+BandError bandError(const float* output, const float* reference, const float* depth, int width, int height,
+                    const glm::mat4& projection, double radius) {
+  const size_t n = size_t(width) * size_t(height);
+  HaloBandOptions options;
+  options.radius = float(radius);
+  options.pixelsPerUnit = std::abs(projection[0][0]) * float(width) * 0.5f;
+  const auto band = haloBandMask(linearViewDistances({depth, n}, projection), width, height, options);
+  const MaskedError e = maskedError(output, reference, band);
+  return {e.pixels, e.rmse, e.bias, e.rmse * e.rmse * double(e.pixels), e.bias * double(e.pixels), radius};
+}
+
+namespace {
+
+nlohmann::json bandJson(const BandError& b) {
+  return {{"pixels", b.pixels}, {"rmse", b.rmse}, {"bias", b.bias}, {"radius", b.radius}};
+}
+
+}  // namespace
+
 nlohmann::json toJson(const ErrorMetrics& m) {
   nlohmann::json j{{"pixels", m.pixels}, {"rmse", m.rmse}, {"mae", m.mae},   {"max", m.maxError},
                    {"bias", m.bias},     {"psnr", finiteOrNull(m.psnr)}, {"ssim", m.ssim}, {"p99", m.p99}};
   if (m.flip) j["flip"] = *m.flip;
+  j["halo_band"] = bandJson(m.haloBand);
   return j;
 }
 
 void ErrorAnalysis::addFrame(const AnalyzedFrame& frame) {
   if (!frame.reference || !frame.visibility) return;
-  frames_[frame.index] = computeErrorMetrics(frame.visibility, frame.reference->data(), frame.depth, frame.width,
-                                             frame.height, isReversedDepth(frame.projection), withFlip_);
+  ErrorMetrics& m = frames_[frame.index] = computeErrorMetrics(
+      frame.visibility, frame.reference->data(), frame.depth, frame.width, frame.height, isReversedDepth(frame.projection),
+      withFlip_);
+  if (frame.depth)
+    m.haloBand = bandError(frame.visibility, frame.reference->data(), frame.depth, frame.width, frame.height,
+                           frame.projection, frame.bandRadius);
 }
 
 nlohmann::json ErrorAnalysis::frameJson(int index) const {
@@ -149,6 +175,10 @@ nlohmann::json ErrorAnalysis::summaryJson() const {
     pooled.sumAbsolute += m.sumAbsolute;
     pooled.sumSigned += m.sumSigned;
     pooled.maxError = std::max(pooled.maxError, m.maxError);
+    pooled.haloBand.pixels += m.haloBand.pixels;
+    pooled.haloBand.sumSquared += m.haloBand.sumSquared;
+    pooled.haloBand.sumSigned += m.haloBand.sumSigned;
+    pooled.haloBand.radius = m.haloBand.radius;
     rmse.push_back(m.rmse);
     ssim.push_back(m.ssim);
     p99Sum += m.p99;
@@ -162,6 +192,9 @@ nlohmann::json ErrorAnalysis::summaryJson() const {
   for (double s : ssim) pooled.ssim += s / double(ssim.size());
   pooled.p99 = p99Sum / double(frames_.size());
   if (withFlip_) pooled.flip = flipSum / count;
+  const double band = std::max<double>(1.0, double(pooled.haloBand.pixels));
+  pooled.haloBand.rmse = std::sqrt(pooled.haloBand.sumSquared / band);
+  pooled.haloBand.bias = pooled.haloBand.sumSigned / band;
   auto j = toJson(pooled);
   j["reference"] = referenceKind_;
   j["frames"] = frames_.size();

@@ -11,7 +11,9 @@
 //         SSIM map is averaged over non-sky pixels),
 //   p99 (99th percentile of |e|, nearest rank), pixels (how many were compared),
 //   flip (only when asked for: mean LDR-FLIP over the non-sky pixels, metrics/flip.h; the images
-//         are filtered whole, sky included, as a viewer sees them).
+//         are filtered whole, sky included, as a viewer sees them),
+//   halo_band (pixels, rmse, bias and the radius that built it: the error over the halo band,
+//         metrics/halo_band.h, from the capture's scene.ao_radius, else kHaloBandDefaultRadius).
 // Summary over frames: rmse, mae, bias and psnr pooled over every compared pixel of every frame,
 // max the largest max, ssim and p99 the mean over frames, flip pooled over pixels, plus
 // min/mean/max of the per-frame rmse and ssim.
@@ -28,12 +30,27 @@
 
 namespace aor {
 
+// Error over the halo band (metrics/halo_band.h): the background within the AO radius behind a
+// nearer silhouette, built from the capture's depth and radius so every technique is judged on the
+// same pixels.
+struct BandError {
+  int64_t pixels = 0;
+  double rmse = 0, bias = 0;
+  double sumSquared = 0, sumSigned = 0;  // for pooling over frames
+  double radius = 0;                     // world units
+};
+
 struct ErrorMetrics {
   int64_t pixels = 0;
   double rmse = 0, mae = 0, maxError = 0, bias = 0, psnr = 0, ssim = 1, p99 = 0;
   double sumSquared = 0, sumAbsolute = 0, sumSigned = 0;  // for pooling over frames
   std::optional<double> flip;
+  BandError haloBand;
 };
+
+// The halo band's error of one frame (`depth` and `projection` give its view distances).
+BandError bandError(const float* output, const float* reference, const float* depth, int width, int height,
+                    const glm::mat4& projection, double radius);
 
 // `depth` may be null (nothing masked). Pixels with no non-sky neighbour in a window are skipped.
 ErrorMetrics computeErrorMetrics(const float* output, const float* reference, const float* depth, int width, int height,

@@ -15,6 +15,9 @@
 
 namespace aor {
 
+// The band's radius where a capture has no scene.ao_radius (report.json's metrics.error.halo_band).
+inline constexpr double kHaloBandDefaultRadius = 1.0;
+
 struct HaloBandOptions {
   float radius = 1.0f;        // the AO radius, world units
   float pixelsPerUnit = 1.0f; // pixels one world unit covers at distance 1 (horizontal)

@@ -49,8 +49,13 @@ std::string errorLine(const json& report) {
   const json* error = metrics ? child(*metrics, "error") : nullptr;
   if (!error) return "error: not measured (the capture has no reference for these frames; `capture --reference-spp N` makes one)";
   std::string psnr = (*error)["psnr"].is_number() ? fmt::format(", PSNR {:.2f} dB", (*error)["psnr"].get<double>()) : ", PSNR inf (identical)";
-  return fmt::format("error vs {} reference, {} frame(s): RMSE {:.5f}, SSIM {:.4f}{}", (*error).value("reference", "?"),
-                     (*error)["frames"].get<int>(), (*error)["rmse"].get<double>(), (*error)["ssim"].get<double>(), psnr);
+  std::string band;
+  if (const json* b = child(*error, "halo_band"); b && (*b)["pixels"].get<int64_t>() > 0)
+    band = fmt::format("; halo band RMSE {:.5f}, bias {:+.4f} ({} px, radius {:g})", (*b)["rmse"].get<double>(),
+                       (*b)["bias"].get<double>(), (*b)["pixels"].get<int64_t>(), (*b)["radius"].get<double>());
+  return fmt::format("error vs {} reference, {} frame(s): RMSE {:.5f}, SSIM {:.4f}{}{}", (*error).value("reference", "?"),
+                     (*error)["frames"].get<int>(), (*error)["rmse"].get<double>(), (*error)["ssim"].get<double>(), psnr,
+                     band);
 }
 
 std::string temporalLine(const json& report) {

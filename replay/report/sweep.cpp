@@ -120,11 +120,17 @@ SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resol
   return plan;
 }
 
-void markPareto(std::vector<SweepRow>& rows) {
+const char* sweepRankName(SweepRank rank) { return rank == SweepRank::HaloBand ? "halo_band" : "rmse"; }
+
+double rankedError(const SweepRow& row, SweepRank rank) { return rank == SweepRank::HaloBand ? row.haloRmse : row.rmse; }
+
+void markPareto(std::vector<SweepRow>& rows, SweepRank rank) {
   for (auto& row : rows) {
+    const double error = rankedError(row, rank);
     row.pareto = std::none_of(rows.begin(), rows.end(), [&](const SweepRow& other) {
-      bool noWorse = other.totalMs <= row.totalMs && other.rmse <= row.rmse;
-      bool better = other.totalMs < row.totalMs || other.rmse < row.rmse;
+      const double otherError = rankedError(other, rank);
+      bool noWorse = other.totalMs <= row.totalMs && otherError <= error;
+      bool better = other.totalMs < row.totalMs || otherError < error;
       return &other != &row && noWorse && better;
     });
   }
@@ -138,6 +144,7 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
   out["frames"] = {info.frameBegin, info.frameEnd};
   out["repeat"] = info.repeat;
   out["warmup"] = info.warmup;
+  out["rank_by"] = sweepRankName(info.rank);
   out["time"] = "GPU ms per frame: per pass, the median over frames x repeats; total = the median over frames x repeats of the sum of the compute passes in that repeat (upload and read-back copies listed, not counted)";
   nlohmann::json list = nlohmann::json::array();
   for (const auto& row : rows) {
@@ -145,7 +152,7 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
     for (const auto& [name, ms] : row.passMs) passes[name] = ms;
     list.push_back({{"configuration", row.config.name}, {"settings", row.config.settings.toJson()},
                     {"gpu_ms_median", passes}, {"gpu_ms_total", row.totalMs}, {"rmse", row.rmse},
-                    {"ssim", row.ssim}, {"error", row.error}, {"pareto", row.pareto}});
+                    {"ssim", row.ssim}, {"halo_band_rmse", row.haloRmse}, {"error", row.error}, {"pareto", row.pareto}});
     if (row.sppMax > 0) list.back()["accumulated_spp"] = {row.sppMin, row.sppMax};
   }
   out["rows"] = list;
@@ -189,12 +196,13 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRow& row = rows[i];
     all.x.push_back(row.totalMs);
-    all.y.push_back(row.rmse);
+    all.y.push_back(rankedError(row, info.rank));
     // A ray-traced technique's cost is its samples per pixel: they go with its point and the x axis.
     std::string spp = row.samplesLabel();
     all.labels.push_back(spp.empty() ? std::to_string(i + 1) : fmt::format("{} ({})", i + 1, spp));
-    all.tooltips.push_back(fmt::format("{}: {}{}, {:.4g} ms, RMSE {:.5g}{}", i + 1, row.config.name, spp.empty() ? "" : ", " + spp,
-                                       row.totalMs, row.rmse, row.pareto ? " (Pareto-optimal)" : ""));
+    all.tooltips.push_back(fmt::format("{}: {}{}, {:.4g} ms, RMSE {:.5g}, halo-band RMSE {:.5g}{}", i + 1, row.config.name,
+                                       spp.empty() ? "" : ", " + spp, row.totalMs, row.rmse, row.haloRmse,
+                                       row.pareto ? " (Pareto-optimal)" : ""));
     all.highlighted.push_back(row.pareto);
     options.key.push_back(fmt::format("{} = {}{}", i + 1, row.config.name, spp.empty() ? "" : " (" + spp + " accumulated)"));
     if (!spp.empty()) sppNotes.push_back(fmt::format("{}: {}", i + 1, spp));
@@ -205,29 +213,114 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
   pareto.markers = false;
   for (const auto* row : front) {
     pareto.x.push_back(row->totalMs);
-    pareto.y.push_back(row->rmse);
+    pareto.y.push_back(rankedError(*row, info.rank));
   }
-  options.title = fmt::format("{}: RMSE vs {} reference against GPU time", info.capture, info.referenceKind);
+  const bool band = info.rank == SweepRank::HaloBand;
+  options.title = fmt::format("{}: {} vs {} reference against GPU time", info.capture, band ? "halo-band RMSE" : "RMSE",
+                              info.referenceKind);
   options.xLabel = "GPU time per frame (ms, sum of pass medians)";
   if (!sppNotes.empty()) options.xLabel += fmt::format("; samples per pixel {}", fmt::join(sppNotes, ", "));
-  options.yLabel = "RMSE (visibility, 0-1; sky masked)";
+  options.yLabel = band ? "halo-band RMSE (visibility, 0-1; the background behind nearer silhouettes)"
+                       : "RMSE (visibility, 0-1; sky masked)";
   options.logX = true;
   return svgPlot({pareto, all}, options);
 }
 
-std::string sweepTable(const std::vector<SweepRow>& rows) {
-  size_t nameWidth = 13;
-  for (const auto& row : rows) nameWidth = std::max(nameWidth, row.config.name.size());
-  auto passes = sweepPassNames(rows);
-  std::string table = fmt::format("{:<{}}", "configuration", nameWidth);
+namespace {
+
+size_t nameWidth(const std::vector<const SweepRow*>& rows) {
+  size_t width = 13;
+  for (const auto* row : rows) width = std::max(width, row->config.name.size());
+  return width;
+}
+
+// Rows' pass times, the passes as columns, with their total, errors and Pareto flag: the table of
+// a sweep of one technique.
+std::string passTable(const std::vector<const SweepRow*>& rows, bool totals) {
+  const size_t width = nameWidth(rows);
+  std::vector<std::string> passes;
+  for (const auto* row : rows)
+    for (const auto& [name, ms] : row->passMs)
+      if (std::find(passes.begin(), passes.end(), name) == passes.end()) passes.push_back(name);
+  std::string table = fmt::format("{:<{}}", "configuration", width);
   for (const auto& p : passes) table += fmt::format(" {:>{}}", p, std::max<size_t>(p.size(), 8));
-  table += fmt::format(" {:>10} {:>9} {:>7} {:>6}\n", "total ms", "RMSE", "SSIM", "pareto");
-  for (const auto& row : rows) {
-    table += fmt::format("{:<{}}", row.config.name, nameWidth);
-    for (const auto& p : passes) table += fmt::format(" {:>{}.3f}", passMs(row, p), std::max<size_t>(p.size(), 8));
-    table += fmt::format(" {:>10.3f} {:>9.5f} {:>7.4f} {:>6}\n", row.totalMs, row.rmse, row.ssim, row.pareto ? "*" : "");
+  if (totals) table += fmt::format(" {:>10} {:>9} {:>9} {:>7} {:>6}", "total ms", "RMSE", "halo RMSE", "SSIM", "pareto");
+  table += "\n";
+  for (const auto* row : rows) {
+    table += fmt::format("{:<{}}", row->config.name, width);
+    for (const auto& p : passes) table += fmt::format(" {:>{}.3f}", passMs(*row, p), std::max<size_t>(p.size(), 8));
+    if (totals)
+      table += fmt::format(" {:>10.3f} {:>9.5f} {:>9.5f} {:>7.4f} {:>6}", row->totalMs, row->rmse, row->haloRmse, row->ssim,
+                           row->pareto ? "*" : "");
+    table += "\n";
   }
   return table;
+}
+
+constexpr size_t kTerminalColumns = 120;
+
+std::string totalsTable(const std::vector<const SweepRow*>& rows) {
+  const size_t width = nameWidth(rows);
+  std::string table = fmt::format("{:>3} {:<{}} {:>10} {:>9} {:>9} {:>10} {:>7} {:>6}\n", "#", "configuration", width,
+                                  "total ms", "RMSE", "halo RMSE", "halo bias", "SSIM", "pareto");
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const SweepRow* row = rows[i];
+    table += fmt::format("{:>3} {:<{}} {:>10.3f} {:>9.5f} {:>9.5f} {:>+10.4f} {:>7.4f} {:>6}\n", i + 1, row->config.name,
+                         width, row->totalMs, row->rmse, row->haloRmse, row->haloBias, row->ssim, row->pareto ? "*" : "");
+  }
+  return table;
+}
+
+// One technique's passes (rows) against its configurations (columns, by their # in the totals
+// table), split into blocks of columns so that no line passes 120 characters.
+std::string techniquePassTable(const std::vector<const SweepRow*>& rows, const std::vector<size_t>& numbers) {
+  std::vector<std::string> passes;
+  for (const auto* row : rows)
+    for (const auto& [name, ms] : row->passMs)
+      if (std::find(passes.begin(), passes.end(), name) == passes.end()) passes.push_back(name);
+  size_t width = 4;
+  for (const auto& p : passes) width = std::max(width, p.size());
+  const size_t perBlock = std::max<size_t>(1, (kTerminalColumns - width) / 10);
+  std::string table;
+  for (size_t first = 0; first < rows.size(); first += perBlock) {
+    const size_t last = std::min(rows.size(), first + perBlock);
+    table += fmt::format("{:<{}}", "pass", width);
+    for (size_t c = first; c < last; ++c) table += fmt::format(" {:>9}", fmt::format("#{}", numbers[c]));
+    table += "\n";
+    for (const auto& p : passes) {
+      table += fmt::format("{:<{}}", p, width);
+      for (size_t c = first; c < last; ++c) table += fmt::format(" {:>9.3f}", passMs(*rows[c], p));
+      table += "\n";
+    }
+  }
+  return table;
+}
+
+}  // namespace
+
+std::vector<std::string> sweepTechniques(const std::vector<SweepRow>& rows) {
+  std::vector<std::string> names;
+  for (const auto& row : rows)
+    if (std::find(names.begin(), names.end(), row.config.settings.technique().name) == names.end())
+      names.push_back(row.config.settings.technique().name);
+  return names;
+}
+
+std::string sweepTable(const std::vector<SweepRow>& rows) {
+  std::vector<const SweepRow*> all;
+  for (const auto& row : rows) all.push_back(&row);
+  const auto techniques = sweepTechniques(rows);
+  if (techniques.size() <= 1) return passTable(all, true);
+  std::string text = totalsTable(all);
+  for (const auto& technique : techniques) {
+    std::vector<const SweepRow*> own;
+    std::vector<size_t> numbers;
+    for (size_t i = 0; i < all.size(); ++i)
+      if (all[i]->config.settings.technique().name == technique) own.push_back(all[i]), numbers.push_back(i + 1);
+    text += fmt::format("\n{}: GPU ms per pass and configuration (#, median per frame)\n", technique) +
+            techniquePassTable(own, numbers);
+  }
+  return text;
 }
 
 std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows) {

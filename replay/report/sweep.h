@@ -44,6 +44,8 @@ struct SweepRow {
   double totalMs = 0;                                  // totalMedianMs (report/pipeline_time.h)
   nlohmann::json error;                                // ErrorAnalysis::summaryJson()
   double rmse = 0, ssim = 0;
+  double haloRmse = 0, haloBias = 0;  // over the halo band (error.halo_band; 0 pixels: both 0)
+  int64_t haloPixels = 0;
   bool pareto = false;
   // Techniques that accumulate samples over frames (frames[i].technique.accumulated_spp, rtao):
   // the samples per pixel its frames reached, least and most; 0 for the others.
@@ -51,19 +53,32 @@ struct SweepRow {
   std::string samplesLabel() const;  // "4-64 spp", or "" for a technique without them
 };
 
-// A row is Pareto-optimal when no other row is at least as fast and at least as accurate (RMSE)
-// and strictly better in one of the two.
-void markPareto(std::vector<SweepRow>& rows);
+// The error a sweep ranks and plots by: RMSE over every surface pixel, or over the halo band only.
+enum class SweepRank { Rmse, HaloBand };
+const char* sweepRankName(SweepRank rank);   // "rmse", "halo_band"
+double rankedError(const SweepRow& row, SweepRank rank);
+
+// A row is Pareto-optimal when no other row is at least as fast and at least as accurate (the
+// ranked error) and strictly better in one of the two.
+void markPareto(std::vector<SweepRow>& rows, SweepRank rank = SweepRank::Rmse);
 
 struct SweepInfo {
   std::string capture, device, referenceKind;  // referenceKind: "ray-traced" or "screen-space"
   int frameBegin = 0, frameEnd = 0, repeat = 1, warmup = 0;
+  SweepRank rank = SweepRank::Rmse;
 };
 
 nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& rows);
 std::string sweepCsv(const std::vector<SweepRow>& rows);
 std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows);
+// The terminal's tables: with one technique, a row per configuration with its passes; with
+// several, a totals table (numbered configurations: time, errors, Pareto) and then, per
+// technique, its passes against its configurations' numbers only, in blocks no wider than 120
+// characters, so no table carries another technique's columns.
 std::string sweepTable(const std::vector<SweepRow>& rows);
+
+// The techniques of the rows, in first-seen order.
+std::vector<std::string> sweepTechniques(const std::vector<SweepRow>& rows);
 
 // Every pass name of the rows, in first-seen order (the table's and the page's columns).
 std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows);

@@ -217,56 +217,51 @@ void writeSideBySide(const fs::path& png, int w, int h, const float* single, con
   writePngGray(png, 3 * w, h, side.data());
 }
 
-// Error in the halo band and overall, single against dual layer, from one replay each of the same
-// capture; the band is the same pixels for both (it depends on layer 0 only). With
-// AOR_SAO_FIGURES=DIR the images go to DIR (the README's), else to the test's scratch folder.
+// With AOR_SAO_FIGURES=DIR, the README's pictures of frame 0: single, dual and reference side by
+// side, and the band.
+void writeHaloFigures(const std::string& name, const fs::path& path) {
+  const char* dir = std::getenv("AOR_SAO_FIGURES");
+  if (!dir) return;
+  Capture capture = loadCapture(path);
+  ReplayedFrames runs[2] = {replayWithSettings(path, "sao", {"dual_layer=0"}, 0, 1),
+                            replayWithSettings(path, "sao", {"dual_layer=1"}, 0, 1)};
+  auto reference = loadReference(capture, 0);
+  ASSERT_TRUE(reference.has_value());
+  writeSideBySide(fs::path(dir) / (name + "_single_dual_reference.png"), capture.width, capture.height,
+                  runs[0].frames[0].visibility.data(), runs[1].frames[0].visibility.data(), reference->data());
+  const GBuffer g = loadGBuffer(capture, 0);
+  HaloBandOptions options;
+  options.radius = float(*captureRadius(capture));
+  options.pixelsPerUnit = projectionParams(capture.frames[0].projection, capture.width, capture.height).pixelsPerUnit;
+  auto band = haloBandMask(linearViewDistances(g.depth, capture.frames[0].projection), capture.width, capture.height, options);
+  std::vector<float> bandImage(band.begin(), band.end());
+  writePngGray(fs::path(dir) / (name + "_halo_band.png"), capture.width, capture.height, bandImage.data());
+}
+
+// Error in the halo band and overall, single against dual layer, as `aoreplay run` reports them
+// (report.json's metrics.error and metrics.error.halo_band); the band is the same pixels for both
+// (it depends on layer 0 and the capture's radius only).
 HaloFigures measureHalo(const std::string& name) {
   fs::path path = fs::path(AOR_SOURCE_DIR) / "captures" / name;
-  Capture capture = loadCapture(path);
-  EXPECT_TRUE(capture.hasDepth2);
-  float radius = float(*captureRadius(capture));
-  ReplayedFrames runs[2] = {replayWithSettings(path, "sao", {"dual_layer=0"}), replayWithSettings(path, "sao", {"dual_layer=1"})};
-  fs::path figures = std::getenv("AOR_SAO_FIGURES") ? fs::path(std::getenv("AOR_SAO_FIGURES")) : scratchDir("sao-halo-" + name);
   HaloFigures out;
-  double squared[2] = {0, 0}, bandSquared[2] = {0, 0}, bandSum[2] = {0, 0};
-  for (size_t f = 0; f < capture.frames.size(); ++f) {
-    const auto& frame = capture.frames[f];
-    GBuffer g = loadGBuffer(capture, int(f));
-    auto reference = loadReference(capture, int(f));
-    EXPECT_TRUE(reference.has_value());
-    if (!reference) return out;
-    auto distances = linearViewDistances(g.depth, frame.projection);
-    HaloBandOptions options;
-    options.radius = radius;
-    options.pixelsPerUnit = projectionParams(frame.projection, capture.width, capture.height).pixelsPerUnit;
-    auto band = haloBandMask(distances, capture.width, capture.height, options);
-    std::vector<uint8_t> surfaces(distances.size());
-    for (size_t i = 0; i < distances.size(); ++i) surfaces[i] = distances[i] > 0.0f;
-    for (int dual = 0; dual < 2; ++dual) {
-      const float* output = runs[dual].frames.at(f).visibility.data();
-      MaskedError inBand = maskedError(output, reference->data(), band), all = maskedError(output, reference->data(), surfaces);
-      bandSquared[dual] += inBand.rmse * inBand.rmse * double(inBand.pixels);
-      bandSum[dual] += inBand.bias * double(inBand.pixels);
-      squared[dual] += all.rmse * all.rmse * double(all.pixels);
-      if (dual == 0) {
-        out.bandPixels += inBand.pixels;
-        out.pixels += all.pixels;
-      }
-    }
-    if (f == 0) {
-      writeSideBySide(figures / (name + "_single_dual_reference.png"), capture.width, capture.height,
-                      runs[0].frames[0].visibility.data(), runs[1].frames[0].visibility.data(), reference->data());
-      std::vector<float> bandImage(band.begin(), band.end());
-      writePngGray(figures / (name + "_halo_band.png"), capture.width, capture.height, bandImage.data());
-    }
-  }
   for (int dual = 0; dual < 2; ++dual) {
-    out.rmse[dual] = std::sqrt(squared[dual] / double(std::max<int64_t>(out.pixels, 1)));
-    out.bandRmse[dual] = std::sqrt(bandSquared[dual] / double(std::max<int64_t>(out.bandPixels, 1)));
-    out.bandBias[dual] = bandSum[dual] / double(std::max<int64_t>(out.bandPixels, 1));
+    const fs::path run = scratchDir(fmt::format("sao-halo-{}-{}", name, dual));
+    const auto r = runAoreplay(fmt::format("run {} --technique sao --set dual_layer={} --no-images --out {}", path.string(),
+                                           dual, (run / "out").string()));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    if (r.exitCode != 0) return out;
+    const nlohmann::json error = nlohmann::json::parse(readText(run / "out" / "report.json"))["metrics"]["error"];
+    const nlohmann::json& band = error["halo_band"];
+    EXPECT_EQ(band["radius"].get<double>(), *captureRadius(loadCapture(path))) << "the band uses the capture's radius";
+    if (dual == 0) out.pixels = error["pixels"].get<int64_t>(), out.bandPixels = band["pixels"].get<int64_t>();
+    EXPECT_EQ(band["pixels"].get<int64_t>(), out.bandPixels) << "the same band for both layers";
+    out.rmse[dual] = error["rmse"].get<double>();
+    out.bandRmse[dual] = band["rmse"].get<double>();
+    out.bandBias[dual] = band["bias"].get<double>();
   }
-  std::printf("%s: halo band %lld of %lld surface pixels over %zu frames\n", name.c_str(), (long long)out.bandPixels,
-              (long long)out.pixels, capture.frames.size());
+  writeHaloFigures(name, path);
+  std::printf("%s: halo band %lld of %lld surface pixels\n", name.c_str(), (long long)out.bandPixels,
+              (long long)out.pixels);
   for (int dual = 0; dual < 2; ++dual)
     std::printf("  %s layer: RMSE %.4f, halo-band RMSE %.4f, halo-band bias %+.4f\n", dual ? "dual  " : "single",
                 out.rmse[dual], out.bandRmse[dual], out.bandBias[dual]);

@@ -76,6 +76,48 @@ TEST(Sweep, ParetoRowsAreTheOnesNothingBeats) {
   for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].pareto, expected[i]) << rows[i].config.name;
 }
 
+TEST(Sweep, RankingByTheHaloBandUsesItsErrorForTheFront) {
+  std::vector<SweepRow> rows = {row("a", 1.0, 0.10), row("b", 2.0, 0.05)};
+  rows[0].haloRmse = 0.02;  // a: faster, worse overall, better in the band
+  rows[1].haloRmse = 0.08;
+  markPareto(rows, SweepRank::HaloBand);
+  EXPECT_TRUE(rows[0].pareto);
+  EXPECT_FALSE(rows[1].pareto) << "slower and worse in the band";
+  markPareto(rows, SweepRank::Rmse);
+  EXPECT_TRUE(rows[1].pareto);
+  SweepInfo info{"c", "d", "ray-traced"};
+  info.rank = SweepRank::HaloBand;
+  EXPECT_NE(sweepSvg(info, rows).find("halo-band RMSE"), std::string::npos);
+}
+
+// Several techniques: a totals table, then each technique's own passes only, no line over 120
+// characters even with CACAO's long pass names.
+TEST(Sweep, TablesOfSeveralTechniquesKeepEachOnesPassesAndFit120Columns) {
+  auto plan = expand({}, {"technique=gtao,cacao"});
+  std::vector<SweepRow> rows;
+  for (const auto& config : plan.configs) {
+    SweepRow r{config};
+    const bool cacao = config.settings.technique().name == "cacao";
+    r.passMs = cacao ? std::vector<std::pair<std::string, double>>{{"cacao_prepare_native_normals_from_input_normals", 0.25},
+                                                                   {"cacao_generate_q1", 2.0}}
+                     : std::vector<std::pair<std::string, double>>{{"gtao", 1.5}, {"spatial", 0.4}};
+    rows.push_back(r);
+  }
+  ASSERT_GT(rows.size(), 8u) << "enough configurations to need more than one block of columns";
+  const std::string table = sweepTable(rows);
+  size_t widest = 0, start = 0;
+  for (size_t end; (end = table.find('\n', start)) != std::string::npos; start = end + 1) widest = std::max(widest, end - start);
+  EXPECT_LE(widest, 120u) << table;
+  const size_t cacaoBlock = table.find("cacao: GPU ms per pass");
+  const size_t gtaoBlock = table.find("gtao: GPU ms per pass");
+  ASSERT_NE(cacaoBlock, std::string::npos) << table;
+  ASSERT_NE(gtaoBlock, std::string::npos) << table;
+  EXPECT_EQ(table.substr(gtaoBlock, cacaoBlock - gtaoBlock).find("cacao_generate_q1"), std::string::npos)
+      << "gtao's table has none of cacao's passes";
+  EXPECT_EQ(table.substr(0, gtaoBlock).find("spatial"), std::string::npos) << "the totals table has no pass column";
+  EXPECT_NE(table.find("halo RMSE"), std::string::npos);
+}
+
 TEST(Sweep, CsvHasOneLinePerRowTheUnionOfKeysAndTheUnionOfPasses) {
   auto plan = expand({"low"}, {"technique=gtao,reference"});
   SweepRow a{plan.configs[0]}, b{plan.configs[1]};

@@ -151,3 +151,46 @@ TEST(ErrorAnalysis, FramesWithoutReferenceAreSkippedAndSummariesPool) {
   EXPECT_EQ(s["reference"], "ray-traced");
   EXPECT_TRUE(ErrorAnalysis().summaryJson().is_null());
 }
+
+namespace aor {
+namespace {
+
+// A plate 2 units away in front of a wall 6 units away: the wall next to the plate's edge is the
+// halo band. The output is too open (+0.2) on the wall's left half only.
+TEST(ErrorAnalysis, HaloBandIsTheBackgroundBehindASilhouetteWithinTheCapturesRadius) {
+  const int w = 40, h = 20;
+  glm::mat4 p = standardProjection();
+  p[0][0] = p[1][1] = 1.0f;  // 20 pixels per unit at distance 1: a radius of 2 reaches 7 pixels at 6 units
+  auto depthAt = [&](float distance) { return (p[2][2] * -distance + p[3][2]) / distance; };
+  Images im = constantImages(w, h, 0.5f, 0.5f, depthAt(6.0f));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w / 2; ++x) {
+      const size_t i = size_t(y * w + x);
+      if (x < 10) im.depth[i] = depthAt(2.0f);  // the plate: columns 0-9
+      else im.output[i] = 0.7f;                 // the wall next to it
+    }
+  ErrorAnalysis analysis;
+  AnalyzedFrame frame = frameOf(im, 0, im.reference, p);
+  frame.bandRadius = 2.0f;
+  analysis.addFrame(frame);
+  const auto band = analysis.frameJson(0)["halo_band"];
+  EXPECT_EQ(band["radius"].get<double>(), 2.0);
+  const int64_t pixels = band["pixels"].get<int64_t>();
+  EXPECT_GT(pixels, 0);
+  EXPECT_LT(pixels, int64_t(w * h / 2)) << "only the wall near the plate's edge";
+  // Every band pixel lies on the wall's left half (columns 10-19), where the output is off by 0.2.
+  EXPECT_NEAR(band["rmse"].get<double>(), double(0.7f) - double(0.5f), 1e-6);
+  EXPECT_NEAR(band["bias"].get<double>(), double(0.7f) - double(0.5f), 1e-6);
+  // A larger radius reaches farther from the edge.
+  frame.bandRadius = 6.0f;
+  ErrorAnalysis wider;
+  wider.addFrame(frame);
+  EXPECT_GT(wider.frameJson(0)["halo_band"]["pixels"].get<int64_t>(), pixels);
+  // The summary pools the band over frames like every other error.
+  analysis.addFrame(frameOf(im, 1, im.reference, p));
+  EXPECT_EQ(analysis.summaryJson()["halo_band"]["pixels"].get<int64_t>(),
+            pixels + analysis.frameJson(1)["halo_band"]["pixels"].get<int64_t>());
+}
+
+}  // namespace
+}  // namespace aor

@@ -102,6 +102,7 @@ std::string metricsOverTimeHtml(const json& report) {
     if (!s.x.empty()) series.push_back(std::move(s));
   };
   add("RMSE vs reference", {"metrics", "error", "rmse"});
+  add("halo-band RMSE (behind nearer silhouettes)", {"metrics", "error", "halo_band", "rmse"});
   auto dissimilarity = perFrame(frames, "1 - SSIM vs reference", [](const json& f) -> std::optional<double> {
     auto ssim = numberAt(f, {"metrics", "error", "ssim"});
     return ssim ? std::optional<double>(1.0 - *ssim) : std::nullopt;

@@ -23,30 +23,58 @@ std::string numberCell(double value, const char* format) {
   return fmt::format("<td data-value=\"{:.9g}\">{}</td>", value, fmt::format(fmt::runtime(format), value));
 }
 
-std::string configurationsTable(const std::vector<SweepRow>& rows) {
-  auto passes = sweepPassNames(rows);
-  auto keys = keyNames(rows);
-  Table table{"configurations", {"#", "configuration", "technique"}, {}, true};
+bool ofTechnique(const SweepRow& row, const std::string& technique) {
+  return technique.empty() || row.config.settings.technique().name == technique;
+}
+
+// The configurations of `technique` (all when empty): its keys and passes as columns, so a
+// sweep over several techniques shows each one's own columns only; with `totals` also the total,
+// the errors and the Pareto flag.
+std::string configurationsTable(const std::vector<SweepRow>& all, const std::string& technique, bool totals,
+                                bool details = true) {
+  std::vector<SweepRow> rows;
+  std::vector<size_t> numbers;
+  for (size_t i = 0; i < all.size(); ++i)
+    if (ofTechnique(all[i], technique)) rows.push_back(all[i]), numbers.push_back(i + 1);
+  auto passes = details ? sweepPassNames(rows) : std::vector<std::string>{};
+  auto keys = details ? keyNames(rows) : std::vector<std::string>{};
+  Table table{technique.empty() ? "configurations" : "configurations-" + technique, {"#", "configuration", "technique"}, {}, true};
   for (const auto& k : keys) table.header.push_back(k);
   for (const auto& p : passes) table.header.push_back(p + " ms");
-  for (const char* h : {"total ms", "RMSE", "SSIM", "Pareto"}) table.header.push_back(h);
+  if (totals)
+    for (const char* h : {"total ms", "RMSE", "halo-band RMSE", "halo-band bias", "SSIM", "Pareto"}) table.header.push_back(h);
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRow& row = rows[i];
     const Settings& s = row.config.settings;
-    std::vector<std::string> cells{fmt::format("<td data-value=\"{}\">{}</td>", i + 1, i + 1), escape(row.config.name),
-                                   escape(s.technique().name)};
+    std::vector<std::string> cells{fmt::format("<td data-value=\"{}\">{}</td>", numbers[i], numbers[i]),
+                                   escape(row.config.name), escape(s.technique().name)};
     for (const auto& k : keys) cells.push_back(s.has(k) ? escape(s.text(k)) : "");
     for (const auto& p : passes) {
       auto it = std::find_if(row.passMs.begin(), row.passMs.end(), [&](const auto& e) { return e.first == p; });
       cells.push_back(it == row.passMs.end() ? "" : numberCell(it->second, "{:.4f}"));
     }
-    cells.push_back(numberCell(row.totalMs, "{:.4f}"));
-    cells.push_back(numberCell(row.rmse, "{:.5f}"));
-    cells.push_back(numberCell(row.ssim, "{:.4f}"));
-    cells.push_back(row.pareto ? "<td class=\"pass\">yes</td>" : "no");
+    if (totals) {
+      cells.push_back(numberCell(row.totalMs, "{:.4f}"));
+      cells.push_back(numberCell(row.rmse, "{:.5f}"));
+      cells.push_back(numberCell(row.haloRmse, "{:.5f}"));
+      cells.push_back(numberCell(row.haloBias, "{:+.4f}"));
+      cells.push_back(numberCell(row.ssim, "{:.4f}"));
+      cells.push_back(row.pareto ? "<td class=\"pass\">yes</td>" : "no");
+    }
     table.rows.push_back(std::move(cells));
   }
   return table.html();
+}
+
+// One technique: one table. Several: the totals of every configuration, then each technique's
+// passes apart.
+std::string configurationsHtml(const std::vector<SweepRow>& rows) {
+  const auto techniques = sweepTechniques(rows);
+  if (techniques.size() <= 1) return configurationsTable(rows, "", true);
+  std::string html = configurationsTable(rows, "", true, false);
+  for (const auto& technique : techniques)
+    html += "<h3>" + escape(technique) + ": passes and keys</h3>\n" + configurationsTable(rows, technique, false);
+  return html;
 }
 
 }  // namespace
@@ -59,12 +87,12 @@ std::string sweepPageHtml(const SweepInfo& info, const std::vector<SweepRow>& ro
                          {"device", info.device},
                          {"error against", info.referenceKind + " reference"},
                          {"timing", fmt::format("warm-up {}, {} timed run(s) per frame", info.warmup, info.repeat)}}));
-  page.section("pareto", "Error against GPU time",
+  page.section("pareto", info.rank == SweepRank::HaloBand ? "Halo-band error against GPU time" : "Error against GPU time",
                "<div class=\"plot\">" + sweepSvg(info, rows) +
                    "</div>\n<p class=\"note\">Numbers are the configurations of the table below; hover a point for its "
                    "name and values. Filled: Pareto-optimal (no other configuration is both at least as fast and at "
                    "least as accurate).</p>\n");
-  page.section("configurations-section", "Configurations (click a heading to sort)", configurationsTable(rows));
+  page.section("configurations-section", "Configurations (click a heading to sort)", configurationsHtml(rows));
   return page.html();
 }
 
