@@ -228,6 +228,13 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
 
 namespace {
 
+// A pass's median ms, or "-" where the configuration did not run the pass (not 0: it took no time
+// because it was not there).
+std::string msCell(const SweepRow& row, const std::string& pass, size_t width) {
+  const bool ran = std::any_of(row.passMs.begin(), row.passMs.end(), [&](const auto& e) { return e.first == pass; });
+  return ran ? fmt::format("{:>{}.3f}", passMs(row, pass), width) : fmt::format("{:>{}}", "-", width);
+}
+
 size_t nameWidth(const std::vector<const SweepRow*>& rows) {
   size_t width = 13;
   for (const auto* row : rows) width = std::max(width, row->config.name.size());
@@ -248,7 +255,7 @@ std::string passTable(const std::vector<const SweepRow*>& rows, bool totals) {
   table += "\n";
   for (const auto* row : rows) {
     table += fmt::format("{:<{}}", row->config.name, width);
-    for (const auto& p : passes) table += fmt::format(" {:>{}.3f}", passMs(*row, p), std::max<size_t>(p.size(), 8));
+    for (const auto& p : passes) table += " " + msCell(*row, p, std::max<size_t>(p.size(), 8));
     if (totals)
       table += fmt::format(" {:>10.3f} {:>9.5f} {:>9.5f} {:>7.4f} {:>6}", row->totalMs, row->rmse, row->haloRmse, row->ssim,
                            row->pareto ? "*" : "");
@@ -289,7 +296,7 @@ std::string techniquePassTable(const std::vector<const SweepRow*>& rows, const s
     table += "\n";
     for (const auto& p : passes) {
       table += fmt::format("{:<{}}", p, width);
-      for (size_t c = first; c < last; ++c) table += fmt::format(" {:>9.3f}", passMs(*rows[c], p));
+      for (size_t c = first; c < last; ++c) table += " " + msCell(*rows[c], p, 9);
       table += "\n";
     }
   }
