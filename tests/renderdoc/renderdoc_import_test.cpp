@@ -54,6 +54,11 @@ TEST_P(ImportMatchesReadBack, DepthNormalsAndMatricesBitForBitAndDepthAnalytic) 
   EXPECT_NE(r.output.find(fmt::format("{} 160x90", c.renderdocName)), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(c.reversed ? "reversed depth, near 0.1, far 40" : "standard depth, near 0.1, far 40"),
             std::string::npos) << r.output;
+  // The self-check ran and every visible point matched (its figures, printed for the log).
+  const size_t check = r.output.find("self-check:");
+  ASSERT_NE(check, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" 0 disagree", check), std::string::npos) << r.output;
+  std::printf("[ %s ] %s", name.c_str(), r.output.substr(check, r.output.find('\n', check) - check + 1).c_str());
 
   const Capture capture = loadCapture(out);
   ASSERT_EQ(capture.frames.size(), 1u);
