@@ -21,6 +21,7 @@
 #include "cli/compare_command.h"
 #include "report/html/compare_page.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "report/output_directory.h"
 
 extern char** environ;
@@ -181,7 +182,7 @@ void registerAbCommand(CLI::App& app) {
   cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
   cmd->add_option("--rounds", args->rounds, "rounds of A B B A (each adds two runs a side)")
       ->required()
-      ->check(CLI::Range(1, 10000));
+      ->check(wholeIn(1, 10000));
   cmd->add_option("--a-binary", args->aBinary, "aoreplay binary of side A (default: this one)");
   cmd->add_option("--b-binary", args->bBinary, "aoreplay binary of side B (default: this one)");
   cmd->add_option("--a", args->aArgs, "`run` arguments of side A, one string (e.g. \"--preset ultra\")");

@@ -9,6 +9,7 @@
 #include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "options/progress.h"
 #include "generator/generator.h"
 #include "options/size.h"
@@ -51,10 +52,10 @@ void registerCaptureCommand(CLI::App& app) {
   cmd->add_option("scene", args->options.scene, "plane | pit | sphere | boxes | bunny | thin")->required();
   cmd->add_option("--out", args->out, "capture folder to write")->required();
   cmd->add_option("--size", args->size, "WxH")->capture_default_str();
-  cmd->add_option("--frames", args->options.frames, "number of frames")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--frames", args->options.frames, "number of frames")->check(wholeIn(1, 100000))->capture_default_str();
   cmd->add_option("--path", args->options.path, "orbit | dolly | static | cut | strafe")->capture_default_str();
   cmd->add_option("--reference-spp", args->options.referenceSpp, "reference rays per pixel (0: no reference)")
-      ->check(CLI::Range(0, 1 << 20))
+      ->check(wholeIn(0, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--radius", args->radius, "AO radius in world units (default: the scene's)");
   cmd->add_flag("--reversed-z", args->options.reversedZ, "reversed depth (near 1, far 0)");
@@ -64,7 +65,7 @@ void registerCaptureCommand(CLI::App& app) {
   args->separation = cmd->add_option("--depth2-separation", args->options.depth2Separation,
                    "world units a second-layer surface lies at least behind layer 0 along the ray")
       ->capture_default_str();
-  cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(CLI::Range(0.5, 179.0))->capture_default_str();
+  cmd->add_option("--fov", args->options.verticalFovDegrees, "vertical field of view, degrees")->check(numberIn(0.5, 179.0))->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "seed of the reference sampling")->capture_default_str();
   handlers()["capture"] = [args] { return captureCommand(*args); };
 }

@@ -12,6 +12,7 @@
 #include "capture/json_input.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "report/html/compare_page.h"
 #include "report/junit.h"
 #include "report/output_directory.h"
@@ -48,19 +49,19 @@ void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
   cmd.add_option("--junit", flags.junit, "also write the verdicts as JUnit XML to this file (one test case per name)");
   cmd.add_option("--ignore", flags.ignore, "skip names matching this regular expression (repeatable)");
   cmd.add_option("--alpha", flags.options.alpha, "false-alarm rate over all judged names (Holm)")
-      ->check(CLI::Range(1e-9, 0.5))
+      ->check(numberIn(1e-9, 0.5))
       ->capture_default_str();
   cmd.add_option("--min-effect", flags.options.minEffect, "smallest median change that counts, as a ratio either way")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(numberIn(0.0, 10.0))
       ->capture_default_str();
   cmd.add_option("--min-effect-ms", flags.options.minEffectMs,
                  "smallest absolute median change that counts, in milliseconds")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(numberIn(0.0, 1e6))
       ->capture_default_str();
   cmd.add_option("--spread-multiple", flags.options.spreadMultiple,
                  "spreads (robust, of log values) of the noisier side a change must exceed: to count at all with "
                  "within-run samples, to be unknown rather than same with runs")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(numberIn(0.0, 100.0))
       ->capture_default_str();
   cmd.add_flag("--judge-host-copies", flags.options.judgeHostCopies,
                "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");

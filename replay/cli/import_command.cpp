@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "import/renderdoc_import.h"
 
 namespace aor::cli {
@@ -40,7 +41,7 @@ void registerImportCommand(CLI::App& app) {
   rd->add_option("files", args->files, "RenderDoc captures (.rdc), one frame each, in file-name order");
   rd->add_option("--out", args->out, "capture folder to write")->required();
   auto* event = rd->add_option("--event", args->event, "event ID to import (default: the last draw with a depth target)")
-                    ->check(CLI::NonNegativeNumber);
+                    ->check(wholeIn(0, 2147483647));
   rd->add_option("--pass", args->passName, "the last draw with a depth target inside this marker region")
       ->excludes(event);
   rd->add_option("--depth", o.depth, "auto, or the depth texture (RenderDoc's name, ResourceId::N or N)")

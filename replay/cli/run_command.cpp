@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "options/progress.h"
 #include "cli/settings_options.h"
 #include "metrics/depth.h"
@@ -204,9 +205,9 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
   auto* cmd = app.add_subcommand("run", "replay a capture through a technique's render graph, time each pass");
   cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
   args->settings.add(*cmd, help);
-  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(wholeIn(1, 100000))->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame before timing")
-      ->check(CLI::Range(0, 100000))
+      ->check(wholeIn(0, 100000))
       ->capture_default_str();
   cmd->add_flag("--overlap", args->overlap,
                 "decode the next frame and sink the last one on workers while a frame is timed (the most frames per "
@@ -215,7 +216,7 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
                 "no thread of the tool runs while a frame is timed: frames are preloaded in chunks and sunk after "
                 "(the default on a CPU device: lavapipe, llvmpipe, SwiftShader)");
   cmd->add_option("--preload-budget", args->preloadBudgetMiB, "MiB a chunk of preloaded frames may hold (isolated timing)")
-      ->check(CLI::Range(1.0, 1048576.0))
+      ->check(numberIn(1.0, 1048576.0))
       ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>/)");
   cmd->add_option("--device", args->device, kDeviceHelp);
@@ -228,11 +229,11 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
       ->needs(cmd->get_option("--expect"));
   cmd->add_option("--jump-angle", args->cameraJump.maxRotationDegrees,
                   "reset history when the camera turns more than this many degrees between frames (0 = off)")
-      ->check(CLI::Range(0.0, 180.0))
+      ->check(numberIn(0.0, 180.0))
       ->capture_default_str();
   cmd->add_option("--jump-distance", args->cameraJump.maxMoveFraction,
                   "reset history when the camera moves more than this fraction of the median view distance (0 = off)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(numberIn(0.0, 1e12))
       ->capture_default_str();
   cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
                 "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")

@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "options/progress.h"
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
@@ -192,8 +193,8 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
                   "settings file (as `aoreplay tune` writes): its technique is the default, its preset the default "
                   "preset, its keys go before --set, its radius scale applies to its technique");
   cmd->add_option("--frames", args->frames, "half-open frame range A:B (default: all)");
-  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 100000))->capture_default_str();
-  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 100000))->capture_default_str();
+  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(wholeIn(1, 100000))->capture_default_str();
+  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(wholeIn(0, 100000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
   cmd->add_option("--device", args->device, kDeviceHelp);
   cmd->add_option("--rank-by", args->rank,

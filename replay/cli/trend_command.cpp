@@ -8,6 +8,7 @@
 #include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "cli/results_options.h"
 #include "report/output_directory.h"
 #include "results/schema.h"
@@ -57,13 +58,13 @@ void registerTrendCommand(CLI::App& app) {
   cmd->add_option("--series", args->series, "only series whose fingerprint starts with, or whose label contains, this");
   cmd->add_option("--since", args->since, "only runs of this recorded commit and later ones");
   cmd->add_option("--window", args->options.window, "runs a side tested at a boundary, at most (default 30)")
-      ->check(CLI::Range(4, 50));
+      ->check(wholeIn(4, 50));
   cmd->add_option("--min-runs", args->options.minRuns, "runs a side a boundary needs to be tested (default 4)")
-      ->check(CLI::Range(2, 50));
+      ->check(wholeIn(2, 50));
   cmd->add_option("--alpha", args->options.alpha, "false-alarm rate per series over the boundaries scanned (default 0.05)")
-      ->check(CLI::Range(1e-9, 0.5));
+      ->check(numberIn(1e-9, 0.5));
   cmd->add_option("--min-effect", args->options.minEffect, "smallest shift that counts, as a ratio either way (default 0.02)")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(numberIn(0.0, 10.0));
   cmd->add_option("--junit", args->junit, "also write JUnit XML (a test case per series and pass; a new slowdown fails)");
   cmd->add_option("--json", args->json, "also write the change points as JSON (- for standard output)");
   cmd->add_option("--plot", args->plot, "write a plot per series into this folder (FINGERPRINT12.svg)");

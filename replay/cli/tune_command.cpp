@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
 #include "pipeline/analyzed_output.h"
@@ -276,18 +277,19 @@ void registerTuneCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--budget-ms", args->budgetMs,
                   "GPU ms per frame (median compute total): configurations over it are never chosen (times are "
-                  "measured, so with a budget the result can differ run to run)");
+                  "measured, so with a budget the result can differ run to run)")
+      ->check(numberIn(1e-6, 1e9));
   cmd->add_option("--holdout", args->holdout, "capture folders scored before and after, never searched on");
   cmd->add_option("--preset", args->preset, "the technique's preset to start from (default: its default)");
   cmd->add_option("--set", args->assignments, "KEY=VALUE held fixed, repeatable");
   cmd->add_option("--range", args->ranges, "KEY=MIN:MAX narrows a tuned key's declared range, repeatable");
   cmd->add_option("--frames", args->frames, "half-open frame range A:B of every capture (default: all)");
   cmd->add_option("--max-evaluations", args->maxEvaluations, "configurations replayed, the untuned start included")
-      ->check(CLI::Range(1, 100000))->capture_default_str();
+      ->check(wholeIn(1, 100000))->capture_default_str();
   cmd->add_option("--grid-points", args->gridPoints, "grid points per key before the local search (fewer when the grid "
-                  "would take over half the evaluations)")->check(CLI::Range(1, 100))->capture_default_str();
-  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(CLI::Range(1, 1000))->capture_default_str();
-  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(CLI::Range(0, 1000))->capture_default_str();
+                  "would take over half the evaluations)")->check(wholeIn(1, 100))->capture_default_str();
+  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(wholeIn(1, 1000))->capture_default_str();
+  cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(wholeIn(0, 1000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/tune-<technique>/)");
   cmd->add_option("--device", args->device, "Vulkan device: index or name substring (default lavapipe)");
   handlers()["tune"] = [args] { return tuneCommand(*args); };

@@ -209,3 +209,35 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BadInputCli, ::testing::ValuesIn(badCases()),
 
 }  // namespace
 }  // namespace aor::test
+
+namespace aor::test {
+namespace {
+
+// Every numeric option goes through one check (cli/number_options.h): NaN, infinities and numbers
+// past a double are refused with exit 2 and the option's range, before any work. Before it,
+// `compare --alpha nan` turned a x1e308 slowdown into exit 0.
+TEST(BadInputCli, NonFiniteNumbersAreRefusedByEveryNumericOption) {
+  const std::string capture = (std::filesystem::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  const std::vector<std::pair<std::string, std::string>> options = {
+      {"compare a.json b.json", "--alpha"},        {"compare a.json b.json", "--min-effect"},
+      {"compare a.json b.json", "--min-effect-ms"}, {"compare a.json b.json", "--spread-multiple"},
+      {"ab " + capture + " --rounds 1", "--alpha"}, {"trend", "--alpha"},
+      {"trend", "--min-effect"},                    {"run " + capture, "--jump-angle"},
+      {"run " + capture, "--jump-distance"},        {"run " + capture, "--preload-budget"},
+      {"tune " + capture, "--budget-ms"},           {"capture boxes --out x", "--fov"}};
+  for (const auto& [command, option] : options)
+    for (const char* value : {"nan", "-nan", "inf", "-inf", "1e999"}) {
+      const auto r = runAoreplay(fmt::format("{} {} {}", command, option, value));
+      EXPECT_EQ(r.exitCode, 2) << command << " " << option << " " << value << "\n" << r.output;
+      EXPECT_NE(r.output.find(fmt::format("{}: '{}' is not a finite number in [", option, value)), std::string::npos)
+          << r.output;
+    }
+  const auto zero = runAoreplay("tune " + capture + " --budget-ms 0");
+  EXPECT_EQ(zero.exitCode, 2) << "a budget of 0 ms was silently ignored";
+  const auto whole = runAoreplay("run " + capture + " --repeat 2.5");
+  EXPECT_EQ(whole.exitCode, 2);
+  EXPECT_NE(whole.output.find("--repeat: '2.5' is not a whole number in [1, 100000]"), std::string::npos) << whole.output;
+}
+
+}  // namespace
+}  // namespace aor::test
