@@ -1,7 +1,5 @@
 #include "import/renderdoc_import.h"
 
-#include <stdlib.h>
-
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -50,26 +48,6 @@ bool naturalLess(const std::string& a, const std::string& b) {
   }
   return a.size() - i < b.size() - j;
 }
-
-// A private folder for the script's dumps, removed at the end whatever happens.
-class WorkFolder {
- public:
-  WorkFolder() {
-    std::string pattern = (fs::temp_directory_path() / "aoreplay-import-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in " + pattern);
-    path_ = pattern;
-  }
-  ~WorkFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  WorkFolder(const WorkFolder&) = delete;
-  WorkFolder& operator=(const WorkFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 struct ImportedFrame {
   CaptureFrameData data;
@@ -422,7 +400,7 @@ void importRenderDoc(const RenderDocImportOptions& o, std::FILE* log) {
   const std::vector<fs::path> files = renderDocInputs(o);
   // Refuses an --out it must not replace (or one holding an input), before any work.
   OutputDirectory out(o.out, ResultKind::Capture, files);
-  WorkFolder work;
+  ScratchFolder work("aoreplay-import");
   std::vector<CaptureFrameData> frames;
   json scene = {{"source", "renderdoc"}, {"frames", json::array()}};
   for (size_t i = 0; i < files.size(); ++i) {

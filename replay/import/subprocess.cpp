@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,6 +26,14 @@ namespace {
   if (out >= 0) ::dup2(out, STDOUT_FILENO);
   if (err >= 0) ::dup2(err, STDERR_FILENO);
   if (in >= 0) ::dup2(in, STDIN_FILENO);
+  // The helper ends with aoreplay (a signal that ends aoreplay would else leave it replaying), and
+  // takes the usual signals itself: aoreplay's main thread blocks them for its signal thread, and
+  // a blocked mask survives exec.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&signals, s);
+  ::sigprocmask(SIG_UNBLOCK, &signals, nullptr);
   for (const auto& [key, value] : environment) ::setenv(key.c_str(), value.c_str(), 1);
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));

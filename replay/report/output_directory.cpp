@@ -123,6 +123,10 @@ std::set<fs::path>& activeTemporaryFiles() {
   static std::set<fs::path> s;
   return s;
 }
+std::set<fs::path>& activeScratchFolders() {
+  static std::set<fs::path> s;
+  return s;
+}
 
 // ---- file system helpers -------------------------------------------------------------------------------
 
@@ -559,6 +563,23 @@ void writeFileAtomically(const fs::path& path, const std::string& text, const st
   forget();
 }
 
+// ---- scratch folders -------------------------------------------------------------------------------
+
+ScratchFolder::ScratchFolder(const std::string& prefix) {
+  std::string pattern = (fs::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  std::lock_guard<std::mutex> guard(outputsMutex());  // created and registered before a signal can look
+  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in " + pattern);
+  path_ = pattern;
+  activeScratchFolders().insert(path_);
+}
+
+ScratchFolder::~ScratchFolder() {
+  std::lock_guard<std::mutex> guard(outputsMutex());
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+  activeScratchFolders().erase(path_);
+}
+
 // ---- termination ------------------------------------------------------------------------------------
 
 void cleanUpOutputsOnTermination() {
@@ -575,6 +596,8 @@ void cleanUpOutputsOnTermination() {
       std::lock_guard<std::mutex> guard(outputsMutex());
       for (OutputDirectory* d : activeDirectories()) d->abandon();
       for (const auto& tmp : activeTemporaryFiles()) ::unlink(tmp.c_str());
+      std::error_code ignored;
+      for (const auto& folder : activeScratchFolders()) fs::remove_all(folder, ignored);
       // Ends the process by the signal itself, so its parent sees what happened.
       ::signal(received, SIG_DFL);
       pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);

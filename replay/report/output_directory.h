@@ -74,9 +74,25 @@ class OutputDirectory {
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text,
                          const std::vector<std::filesystem::path>& inputs = {});
 
+// A private folder for a command's scratch files ("PREFIX-XXXXXX" in the temporary directory),
+// removed with everything in it when the object goes, and by the termination handler below when
+// a signal ends the process first (an interrupted `import renderdoc` left its folder behind).
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& prefix);
+  ~ScratchFolder();
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 // Call first in main(), before any thread starts: SIGINT, SIGTERM and SIGHUP are then handled on a
 // thread of their own, which removes the staging folders, locks and temporary files of the outputs
-// in progress (a commit under way finishes first) and then ends the process by the same signal.
+// in progress and the scratch folders (a commit under way finishes first) and then ends the process
+// by the same signal.
 void cleanUpOutputsOnTermination();
 
 }  // namespace aor

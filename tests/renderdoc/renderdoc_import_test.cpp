@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -322,6 +323,25 @@ TEST_F(BadInput, SameMemberForBothMatrices) {
   expectRefused(dir, fmt::format("{} --view camera.view --projection camera.view", rdc().string()),
                 {"depth: gbuffer.depth (id", "--view and --projection both name camera.view: a combined matrix is not "
                  "supported", "camera [vertex shader: view (float4x4), projection (float4x4), tint (float4), light_projection (float4x4)]"});
+}
+
+// Interrupted while RenderDoc replays: the scratch folder of the dumps goes too (TMPDIR private to
+// the test, so what is left in it is the import's).
+TEST_F(BadInput, InterruptedImportLeavesNoScratchFolder) {
+  const fs::path dir = scratch("interrupted");
+  fs::create_directories(dir / "tmp");
+  for (const char* delay : {"0.15", "0.3", "0.45"}) {
+    const Command r = run(fmt::format("TMPDIR={} timeout -s INT {} {} import renderdoc {} --out {} {}", (dir / "tmp").string(),
+                                      delay, AOR_EXE, rdc().string(), (dir / "out").string(), kCamera));
+    EXPECT_TRUE(r.exitCode == 124 || r.exitCode == 0) << r.exitCode << " " << r.output;
+    EXPECT_TRUE(fs::is_empty(dir / "tmp")) << "interrupted after " << delay << " s: "
+                                           << (fs::is_empty(dir / "tmp") ? "" : fs::directory_iterator(dir / "tmp")->path().string());
+    fs::remove_all(dir / "out");
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    // "[a]" so that the pattern does not match the shell that runs pgrep.
+    EXPECT_NE(run(fmt::format("pgrep -f '{}/[a]oreplay-import'", (dir / "tmp").string())).exitCode, 0)
+        << "RenderDoc's helper outlived the import";
+  }
 }
 
 TEST_F(BadInput, EarlierCaptureAtOutIsLeftAsItWas) {
