@@ -1,8 +1,11 @@
 // aoreplay: replays AO captures through the render graph and reports time, error and stability.
 // Exit codes: 0 success, 1 failed run (e.g. validation messages), 2 bad usage or bad input,
 // 3 no usable Vulkan device.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
 
 #include "capture/input_error.h"
 #include "cli/commands.h"
@@ -11,6 +14,20 @@
 #include "report/output_directory.h"
 #include "techniques/registry.h"
 #include "vk/vk_check.h"
+
+namespace aor::cli {
+
+// Every command's standard output checked in one place: what a script reads there (compare --json -,
+// export -, the tables) must not be lost silently, so a write that failed (a full disk, a closed
+// pipe) turns the exit status into 1.
+int checkedStandardOutput(int status) {
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return status;
+  // fprintf, not fmt::print, which throws when standard error cannot be written either.
+  std::fprintf(stderr, "aoreplay: failed: cannot write standard output: %s\n", std::strerror(errno));
+  return status == kExitOk ? kExitFailed : status;
+}
+
+}  // namespace aor::cli
 
 int main(int argc, char** argv) {
   // Before any thread starts: an interrupted run removes its staging folder and lock.
@@ -38,7 +55,7 @@ int main(int argc, char** argv) {
   aor::cli::registerExportCommand(app);
   try {
     app.parse(argc, argv);
-    return aor::cli::runSelected(app);
+    return aor::cli::checkedStandardOutput(aor::cli::runSelected(app));
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -49,13 +66,13 @@ int main(int argc, char** argv) {
     app.exit(e);
     return aor::cli::kExitBadInput;
   } catch (const aor::InputError& e) {
-    fmt::print(stderr, "aoreplay: error: {}\n", e.what());
+    std::fprintf(stderr, "aoreplay: error: %s\n", e.what());
     return aor::cli::kExitBadInput;
   } catch (const aor::NoDeviceError& e) {
-    fmt::print(stderr, "aoreplay: no usable Vulkan device: {}\n", e.what());
+    std::fprintf(stderr, "aoreplay: no usable Vulkan device: %s\n", e.what());
     return aor::cli::kExitNoDevice;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "aoreplay: failed: {}\n", e.what());
+    std::fprintf(stderr, "aoreplay: failed: %s\n", e.what());  // fprintf: never throws, even when stderr is gone
     return aor::cli::kExitFailed;
   }
 }

@@ -241,3 +241,22 @@ TEST(BadInputCli, NonFiniteNumbersAreRefusedByEveryNumericOption) {
 
 }  // namespace
 }  // namespace aor::test
+
+namespace aor::test {
+namespace {
+
+// Standard output is checked once for every command (cli/main.cpp): a verdict that could not be
+// written (a full disk here) is exit 1, never a silent 0.
+TEST(BadInputCli, AnUnwritableStandardOutputIsAFailure) {
+  const fs::path dir = scratchDir("stdout-full");
+  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
+  const std::string report = (dir / "run" / "report.json").string();
+  EXPECT_EQ(runAoreplay(fmt::format("compare {} {} --json - > {}", report, report, (dir / "ok.json").string())).exitCode, 0);
+  EXPECT_EQ(runAoreplay(fmt::format("compare {} {} --json - >/dev/full", report, report)).exitCode, 1);
+  EXPECT_EQ(runAoreplay(fmt::format("compare {} {} >/dev/full", report, report)).exitCode, 1);
+  EXPECT_EQ(runAoreplay("devices >/dev/full").exitCode, 1);
+}
+
+}  // namespace
+}  // namespace aor::test
