@@ -37,6 +37,8 @@ std::map<std::string, std::string> parseTags(const std::vector<std::string>& tag
 }
 
 int record(const RecordArgs& args) {
+  if (args.commit.find_first_not_of(" \t") == std::string::npos)
+    throw InputError("", std::nullopt, "--commit", "is empty: runs are stored as runs of a commit");
   results::CommitInfo commit{args.commit, args.branch, args.ordinal ? "ordinal" : "date",
                              args.ordinal ? double(*args.ordinal) : parseCommitDate(args.date)};
   auto tags = parseTags(args.tags);

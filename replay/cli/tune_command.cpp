@@ -1,6 +1,7 @@
 // `aoreplay tune`: fits a technique's constants to the captures' ray-traced references (README,
 // "Tuning"). Every candidate is a real replay of every training capture; the search is in
 // tune/tuner.h, the outputs in report/tune_report.h.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -10,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "options/number.h"
 #include "cli/number_options.h"
 #include "cli/settings_options.h"
 #include "metrics/error_metrics.h"
@@ -77,6 +79,8 @@ std::vector<const Parameter*> chosenKeys(const Technique& technique, const std::
         throw InputError("", std::nullopt, "--keys", fmt::format("technique {} has no key '{}' (its keys: {})", technique.name, key, technique.keyList()));
       if (!p->tunable)
         throw InputError("", std::nullopt, "--keys", fmt::format("key '{}' of {} is not tunable (tunable: {})", key, technique.name, technique.tunableKeyList()));
+      if (std::find(out.begin(), out.end(), p) != out.end())
+        throw InputError("", std::nullopt, "--keys", fmt::format("key '{}' is named twice", key));
       out.push_back(p);
       start = comma + 1;
     }
@@ -89,12 +93,20 @@ std::vector<const Parameter*> chosenKeys(const Technique& technique, const std::
 std::map<std::string, std::pair<double, double>> parseRanges(const std::vector<std::string>& ranges) {
   std::map<std::string, std::pair<double, double>> out;
   for (const auto& r : ranges) {
-    auto eq = r.find('='), colon = r.find(':');
+    auto eq = r.find('='), colon = r.find(':', eq == std::string::npos ? 0 : eq);
+    auto bad = [&] { return InputError("", std::nullopt, "--range", fmt::format("'{}' is not KEY=MIN:MAX with MIN <= MAX", r)); };
+    if (eq == std::string::npos || eq == 0 || colon == std::string::npos) throw bad();
+    // Each bound the whole text between its separators, finite (options/number.h): "1:2:3" is refused.
     double lo = 0, hi = 0;
-    if (eq == std::string::npos || colon == std::string::npos || colon < eq ||
-        std::sscanf(r.c_str() + eq + 1, "%lf", &lo) != 1 || std::sscanf(r.c_str() + colon + 1, "%lf", &hi) != 1 || !(lo <= hi))
-      throw InputError("", std::nullopt, "--range", fmt::format("'{}' is not KEY=MIN:MAX with MIN <= MAX", r));
-    out[r.substr(0, eq)] = {lo, hi};
+    try {
+      lo = parseNumber(std::string_view(r).substr(eq + 1, colon - eq - 1), "--range", -1e30, 1e30);
+      hi = parseNumber(std::string_view(r).substr(colon + 1), "--range", -1e30, 1e30);
+    } catch (const InputError&) {
+      throw bad();
+    }
+    if (!(lo <= hi)) throw bad();
+    if (!out.emplace(r.substr(0, eq), std::make_pair(lo, hi)).second)
+      throw InputError("", std::nullopt, "--range", fmt::format("key '{}' is given twice", r.substr(0, eq)));
   }
   return out;
 }

@@ -61,6 +61,11 @@ SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resol
   bool techniqueAxis = false;
   for (const auto& g : request.grid) {
     GridAxis axis = parseAxis(g);
+    const bool repeated = axis.key == "technique" ? techniqueAxis
+                                                  : std::any_of(axes.begin(), axes.end(), [&](const GridAxis& a) { return a.key == axis.key; });
+    if (repeated)
+      throw InputError("", std::nullopt, "--grid", fmt::format("'{}' is a second axis of key '{}': give its values once, "
+                                                             "comma-separated", g, axis.key));
     if (axis.key != "technique") {
       axes.push_back(axis);
       continue;

@@ -260,3 +260,32 @@ TEST(BadInputCli, AnUnwritableStandardOutputIsAFailure) {
 
 }  // namespace
 }  // namespace aor::test
+
+namespace aor::test {
+namespace {
+
+// Values given twice or empty, which used to pass (the later one won, or nothing was stored):
+// each is exit 2 naming the option, before any work.
+TEST(BadInputCli, RepeatedKeysAndEmptyValuesAreRefused) {
+  const fs::path dir = scratchDir("repeated-values");
+  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
+  const std::string report = (dir / "run" / "report.json").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"sweep " + capture + " --grid slices=1,2 --grid slices=3", "--grid\": 'slices=3' is a second axis of key 'slices'"},
+      {"sweep " + capture + " --grid technique=gtao --grid technique=sao", "is a second axis of key 'technique'"},
+      {"tune " + capture + " --keys power,power", "--keys\": key 'power' is named twice"},
+      {"tune " + capture + " --range power=1:2:3", "--range\": 'power=1:2:3' is not KEY=MIN:MAX"},
+      {"tune " + capture + " --range power=1:2 --range power=1:3", "--range\": key 'power' is given twice"},
+      {"record " + report + " --db sqlite: --commit abc --ordinal 1", "--db\": names no file"},
+      {"record " + report + " --db " + (dir / "s.db").string() + " --commit '' --ordinal 1", "--commit\": is empty"}};
+  for (const auto& [arguments, says] : cases) {
+    const auto r = runAoreplay(arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << arguments << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "s.db")) << "nothing stored for an empty commit";
+}
+
+}  // namespace
+}  // namespace aor::test
