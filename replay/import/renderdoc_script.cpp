@@ -54,6 +54,24 @@ std::vector<std::string> scriptArguments(const DumpRequest& r, const fs::path& s
   return args;
 }
 
+// A user's AOREPLAY_PYTHON must be a Python 3 before the script is blamed for anything: probed
+// once per run (a wrong one was exit 1, "the dump script failed").
+void checkChosenPython(const fs::path& workDir) {
+  const char* chosen = std::getenv("AOREPLAY_PYTHON");
+  if (!chosen || !*chosen) return;
+  static bool checked = false;
+  if (checked) return;
+  const fs::path out = workDir / "python.out", err = workDir / "python.err";
+  const ProcessResult p = runProcess({chosen, "-c", "import sys; print(sys.version_info[0])"}, {}, out, err,
+                                     std::chrono::seconds(30));
+  if (!p.started || p.exitCode != 0 || readWhole(out).rfind("3", 0) != 0)
+    throw InputError(chosen, std::nullopt, "AOREPLAY_PYTHON",
+                     fmt::format("is not a Python 3 that runs ({}): unset it to use Debian's /usr/bin/python3",
+                                 !p.started ? p.startError : p.exitCode != 0 ? fmt::format("exit {}", p.exitCode)
+                                                                              : "it printed " + tail(readWhole(out), 1)));
+  checked = true;
+}
+
 }  // namespace
 
 std::string renderDocPythonInterpreter() {
@@ -63,6 +81,7 @@ std::string renderDocPythonInterpreter() {
 }
 
 nlohmann::json runRenderDocDump(const DumpRequest& r) {
+  checkChosenPython(r.workDir);
   const fs::path script = r.workDir / "renderdoc_dump.py";
   std::ofstream(script, std::ios::binary).write(kRenderDocDumpScript.data(), std::streamsize(kRenderDocDumpScript.size()));
   std::map<std::string, std::string> environment;

@@ -300,6 +300,11 @@ TEST_F(BadInput, NoRenderDocModule) {
   expectRefused(dir, fmt::format("{} {}", rdc().string(), kCamera),
                 {"cannot import RenderDoc's Python module", "apt-get install python3-renderdoc"},
                 "AOREPLAY_PYTHON=" + (dir / "python-without-site").string());
+  // Something that is not a Python 3 is named as the bad input, not reported as a failed script.
+  for (const char* notPython : {"/bin/false", "/bin/echo"})
+    expectRefused(dir, fmt::format("{} {}", rdc().string(), kCamera),
+                  {fmt::format("{}: field \"AOREPLAY_PYTHON\": is not a Python 3 that runs", notPython)},
+                  std::string("AOREPLAY_PYTHON=") + notPython);
 }
 
 TEST_F(BadInput, ProjectionThatIsNotPerspective) {
