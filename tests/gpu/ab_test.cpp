@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -34,7 +35,7 @@ ms=1 label= log= fail= out=
 while [ $# -gt 0 ]; do
   case $1 in
     --ms) ms=$2; shift;; --label) label=$2; shift;; --log) log=$2; shift;;
-    --fail) fail=$2; shift;; --out) out=$2; shift;;
+    --fail) fail=$2; shift;; --out) out=$2; shift;; --hang) exec sleep "$2";;
   esac
   shift
 done
@@ -137,6 +138,28 @@ TEST(Ab, AFailedRunStopsItAndLeavesNothing) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
   r = runAoreplay(ab.command(1, "--ms 1", "--fail 1"));
   EXPECT_EQ(r.exitCode, 1) << r.output;
+}
+
+// A run that hangs is killed past --run-timeout and fails ab; a signal that ends ab ends its run
+// too (the run took signals blocked, as aoreplay's main thread holds them, and outlived ab).
+TEST(Ab, AHungRunIsKilledAndARunEndsWithAb) {
+  AbSetup ab("ab-hung");
+  auto r = runAoreplay(ab.command(1, "--hang 61.25", "--ms 1", "--run-timeout 1"));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("a/01 ran past --run-timeout 1"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(ab.out));
+  // "[s]" keeps the pattern from matching the shell that runs pgrep.
+  EXPECT_NE(std::system("pgrep -f '[s]leep 61.25' >/dev/null"), 0) << "the hung run was left running";
+
+  const std::string background = fmt::format("{} {} > {} 2>&1 & echo $! > {}", AOR_EXE, ab.command(1, "--hang 62.5", "--ms 1"),
+                                             (ab.dir / "ab.log").string(), (ab.dir / "ab.pid").string());
+  ASSERT_EQ(std::system(background.c_str()), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_EQ(std::system("pgrep -f '[s]leep 62.5' >/dev/null"), 0) << "the run should be going";
+  ASSERT_EQ(std::system(fmt::format("kill -TERM $(cat {})", (ab.dir / "ab.pid").string()).c_str()), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  EXPECT_NE(std::system("pgrep -f '[s]leep 62.5' >/dev/null"), 0) << "the run outlived ab";
+  EXPECT_FALSE(fs::exists(ab.out));
 }
 
 TEST(Ab, BadArgumentsAreRefusedBeforeAnyRun) {
