@@ -130,6 +130,10 @@ TimingSamples fromReport(const nlohmann::json& report, const fs::path& path) {
     for (size_t k = 0; k < raw.size(); ++k) values.push_back(positiveNumber(raw[k], path, fmt::format("{}[{}]", field, k)));
     if (values.empty()) throw InputError(path.string(), std::nullopt, field, "is empty");
     std::string name = pass["name"].get<std::string>();
+    // A pass listed twice would add its samples into the total twice.
+    if (std::any_of(samples.begin(), samples.end(), [&](const auto& e) { return e.name == name; }))
+      throw InputError(path.string(), std::nullopt, fmt::format("passes[{}].name", i),
+                       fmt::format("{} is listed twice", quoteForMessage(name)));
     samples.push_back({name, std::move(values), isHostCopyPass(name)});
   }
   if (samples.empty()) return samples;

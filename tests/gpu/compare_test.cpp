@@ -544,6 +544,8 @@ TEST(CompareInput, ReportJsonTotalIsSummedPerRepetitionOfEachFrame) {
   broken("unknown-pass.json", [](auto& r) { r["frames"][0]["gpu_ms_median"]["nope"] = 1; }, "frames[0].gpu_ms_median.nope");
   broken("no-repeat.json", [](auto& r) { r.erase("run"); }, "run.repeat");
   broken("no-frame-passes.json", [](auto& r) { r["frames"][1].erase("gpu_ms_median"); }, "frames[1].gpu_ms_median");
+  // A pass listed twice once added its samples into the total twice (x1.15 on a real report).
+  broken("pass-twice.json", [](auto& r) { r["passes"].push_back(r["passes"][0]); }, "passes[3].name");
 }
 
 TEST(CompareInput, AFolderIsItsReportJsonFilesOnePerRun) {
