@@ -5,8 +5,10 @@
 #include <regex>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "report/html/graph_svg.h"
 #include "report/html/html_page.h"
 #include "gpu_test_support.h"
 #include "report/junit.h"
@@ -98,3 +100,30 @@ TEST(RunSummary, OutputListingNamesEveryFileAndEachFolderOfFramesOnce) {
 
 }  // namespace
 }  // namespace aor
+
+namespace aor::html {
+namespace {
+
+// A chain of passes as graph::toDot writes it (pass nodes p0.., resources r0.., edges between).
+std::string chainDot(int passes) {
+  std::string dot = "digraph render_graph {\n  rankdir=LR;\n";
+  for (int i = 0; i < passes; ++i) dot += fmt::format("  p{} [shape=box, label=\"[{}] pass{}\"];\n", i, i, i);
+  for (int i = 0; i < passes; ++i) dot += fmt::format("  r{} [shape=ellipse, label=\"image{}\"];\n", i, i);
+  for (int i = 0; i < passes; ++i) {
+    dot += fmt::format("  p{} -> r{};\n", i, i);
+    if (i + 1 < passes) dot += fmt::format("  r{} -> p{};\n", i, i + 1);
+  }
+  return dot + "}\n";
+}
+
+// Graphviz's dot took 112 s on 60 chained passes: above kMaxDrawnPasses the page shows the DOT
+// text instead of laying it out; a small graph is still drawn.
+TEST(GraphSvg, LongPassChainsAreNotLaidOut) {
+  EXPECT_EQ(passNodes(chainDot(8)), 8u);
+  EXPECT_NE(graphSvg(chainDot(8)).find("<svg"), std::string::npos);
+  EXPECT_EQ(passNodes(chainDot(100)), 100u);
+  EXPECT_TRUE(graphSvg(chainDot(100)).empty());
+}
+
+}  // namespace
+}  // namespace aor::html

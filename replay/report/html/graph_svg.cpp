@@ -2,12 +2,24 @@
 
 #include <graphviz/gvc.h>
 
+#include <cctype>
 #include <mutex>
 
 namespace aor::html {
 
+// Node lines "  pN [...]" (edge lines "  pN -> rM;" are not counted).
+size_t passNodes(const std::string& dot) {
+  size_t count = 0;
+  for (size_t at = dot.find("\n  p"); at != std::string::npos; at = dot.find("\n  p", at + 1)) {
+    size_t end = at + 4;
+    while (end < dot.size() && std::isdigit(static_cast<unsigned char>(dot[end]))) ++end;
+    count += end > at + 4 && dot.compare(end, 2, " [") == 0;
+  }
+  return count;
+}
+
 std::string graphSvg(const std::string& dot) {
-  if (dot.empty()) return {};
+  if (dot.empty() || passNodes(dot) > kMaxDrawnPasses) return {};
   static std::mutex graphviz;  // its context and error state are global
   std::lock_guard lock(graphviz);
   GVC_t* context = gvContext();

@@ -141,7 +141,13 @@ std::string graphHtml(std::string dot) {
   if (auto lr = dot.find("rankdir=LR"); lr != std::string::npos) dot.replace(lr, 10, "rankdir=TB");
   std::string svg = graphSvg(dot);
   if (!svg.empty()) return "<div class=\"graph\">" + svg + "</div>\n<p class=\"note\">Dashed grey: culled passes.</p>\n";
-  return "<pre class=\"graph\">" + escape(dot.empty() ? "(no graph recorded)" : dot) + "</pre>\n";
+  std::string note;
+  if (const size_t passes = passNodes(dot); passes > kMaxDrawnPasses)
+    note = fmt::format("<p class=\"note\">{} passes: more than the {} this page lays out (Graphviz's layout time grows "
+                       "explosively with long chains); the graph's DOT text follows, `aoreplay graph --dot FILE` writes "
+                       "it for Graphviz.</p>\n",
+                       passes, kMaxDrawnPasses);
+  return note + "<pre class=\"graph\">" + escape(dot.empty() ? "(no graph recorded)" : dot) + "</pre>\n";
 }
 
 std::string bytesText(double bytes) {
