@@ -127,6 +127,20 @@ TEST(UserTechniqueErrors, AShaderSyntaxErrorExits2NamingTheFileAndLine) {
   expectRefused(file, {"shade.comp:5:", "error", "passes[0].shader"}, "syntax");
 }
 
+// An #include that fans out (each level including the next twice, 24 levels: 2^24 expansions)
+// ran past 125 s at 3.3 GB; a budget over the shader's whole expansion stops it at once.
+TEST(UserTechniqueErrors, AnIncludeBombExits2) {
+  std::map<std::string, std::string> files;
+  std::string shader = kShadeShader;
+  shader.insert(shader.find('\n', shader.find("aoreplay.glsl")) + 1, "#include \"level0.glsl\"\n");
+  files["shade.comp"] = shader;
+  for (int level = 0; level < 24; ++level)
+    files[fmt::format("level{}.glsl", level)] =
+        level + 1 < 24 ? fmt::format("#include \"level{0}.glsl\"\n#include \"level{0}.glsl\"\n", level + 1) : "// leaf\n";
+  auto file = writeTechnique("include-bomb", onePassJson("include_bomb"), files);
+  expectRefused(file, {"more than 1000 #include expansions in one shader", "passes[0].shader"}, "include-bomb");
+}
+
 TEST(UserTechniqueErrors, AReadOfAnUndeclaredNameExits2NamingIt) {
   auto file = writeTechnique("undeclared", onePassJson("undeclared", "", R"(["linear_depth", "ao_blurred"])"), {{"shade.comp", kShadeShader}});
   expectRefused(file, {"technique.json", "passes[0].reads[1]", "'ao_blurred'"}, "undeclared");

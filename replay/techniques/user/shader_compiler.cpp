@@ -29,6 +29,10 @@ namespace {
 constexpr const char* kHeaderName = "aoreplay.glsl";
 constexpr uint64_t kMaxSourceBytes = 4u << 20;
 constexpr size_t kMaxIncludeDepth = 32;
+// A budget over one shader's whole expansion: an include that fans out (a file including the
+// next one twice, 24 deep: 2^24 expansions) ran past 125 s at 3.3 GB before it.
+constexpr size_t kMaxIncludes = 1000;
+constexpr uint64_t kMaxIncludedBytes = 16u << 20;
 constexpr const char* kCacheMagic = "aoreplay-spirv-cache 1";
 
 // 64-bit FNV-1a: a cache key, not a defence (a colliding entry is still checked by reflection).
@@ -58,6 +62,8 @@ class Includer : public shaderc::CompileOptions::IncluderInterface {
     auto* r = new Result;
     try {
       if (depth > kMaxIncludeDepth) throw std::runtime_error(fmt::format("#include nested deeper than {}", kMaxIncludeDepth));
+      if (++includes_ > kMaxIncludes)
+        throw std::runtime_error(fmt::format("more than {} #include expansions in one shader", kMaxIncludes));
       if (std::string_view(requested) == kHeaderName) {
         r->name = kHeaderName;
         r->content = header_;
@@ -65,6 +71,8 @@ class Includer : public shaderc::CompileOptions::IncluderInterface {
         fs::path path = resolveTechniqueFile(spec_.folder, requested, "", "#include");
         r->name = displayOf(spec_, fs::path(requested).lexically_normal().string());
         r->content = readBoundedText(path, kMaxSourceBytes, r->name);
+        if ((includedBytes_ += r->content.size()) > kMaxIncludedBytes)
+          throw std::runtime_error(fmt::format("more than {} MiB included into one shader", kMaxIncludedBytes >> 20));
         read_[path.string()] = r->content;
       }
     } catch (const std::exception& e) {
@@ -84,6 +92,8 @@ class Includer : public shaderc::CompileOptions::IncluderInterface {
   const UserTechniqueSpec& spec_;
   std::string header_;
   Sources& read_;
+  size_t includes_ = 0;
+  uint64_t includedBytes_ = 0;
 };
 
 [[noreturn]] void fail(const UserTechniqueSpec& spec, size_t passIndex, const std::string& problem) {
