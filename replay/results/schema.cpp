@@ -49,6 +49,13 @@ int currentSchemaVersion() { return int(kMigrations.size()); }
 void migrate(Database& db) {
   WriteTransaction transaction(db, true);
   int version = db.schemaVersion();
+  // An SQLite file without aoreplay's version that already holds tables is someone else's: the
+  // store's tables were once added to it.
+  if (version == 0 && db.dialect() == Dialect::Sqlite &&
+      db.integerOrNone("SELECT count(*) FROM sqlite_master WHERE type = 'table'", {}).value_or(0) > 0)
+    throw InputError(db.displayName(), std::nullopt, "--db",
+                     "is an SQLite database of something else (it has tables and no aoreplay schema version): "
+                     "give a new file or an aoreplay store");
   if (version > currentSchemaVersion())
     throw InputError(db.displayName(), std::nullopt, "schema version",
                      fmt::format("the store is at schema version {}; this aoreplay knows versions up to {}", version,

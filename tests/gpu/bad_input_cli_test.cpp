@@ -289,3 +289,25 @@ TEST(BadInputCli, RepeatedKeysAndEmptyValuesAreRefused) {
 
 }  // namespace
 }  // namespace aor::test
+
+namespace aor::test {
+namespace {
+
+// `record` once added its tables to any SQLite file it was given; one that has tables of its own
+// and no aoreplay schema version is refused, and left as it was.
+TEST(BadInputCli, AnotherProgramsSqliteFileIsNotTakenAsAStore) {
+  const fs::path dir = scratchDir("foreign-sqlite");
+  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
+  const fs::path db = dir / "notes.db";
+  ASSERT_EQ(std::system(fmt::format("sqlite3 {} \"CREATE TABLE notes (x TEXT)\"", db.string()).c_str()), 0);
+  const std::string before = readText(db);
+  const auto r = runAoreplay(fmt::format("record {} --db {} --commit abc --ordinal 1", (dir / "run" / "report.json").string(),
+                                         db.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("is an SQLite database of something else"), std::string::npos) << r.output;
+  EXPECT_EQ(readText(db), before);
+}
+
+}  // namespace
+}  // namespace aor::test
