@@ -213,6 +213,13 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BadInputCli, ::testing::ValuesIn(badCases()),
 namespace aor::test {
 namespace {
 
+// A one-frame run of boxes-orbit under `dir`: its report.json.
+std::string oneFrameReport(const fs::path& dir) {
+  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  EXPECT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
+  return (dir / "run" / "report.json").string();
+}
+
 // Every numeric option goes through one check (cli/number_options.h): NaN, infinities and numbers
 // past a double are refused with exit 2 and the option's range, before any work. Before it,
 // `compare --alpha nan` turned a x1e308 slowdown into exit 0.
@@ -239,38 +246,23 @@ TEST(BadInputCli, NonFiniteNumbersAreRefusedByEveryNumericOption) {
   EXPECT_NE(whole.output.find("--repeat: '2.5' is not a whole number in [1, 100000]"), std::string::npos) << whole.output;
 }
 
-}  // namespace
-}  // namespace aor::test
-
-namespace aor::test {
-namespace {
-
 // Standard output is checked once for every command (cli/main.cpp): a verdict that could not be
 // written (a full disk here) is exit 1, never a silent 0.
 TEST(BadInputCli, AnUnwritableStandardOutputIsAFailure) {
   const fs::path dir = scratchDir("stdout-full");
-  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
-  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
-  const std::string report = (dir / "run" / "report.json").string();
+  const std::string report = oneFrameReport(dir);
   EXPECT_EQ(runAoreplay(fmt::format("compare {} {} --json - > {}", report, report, (dir / "ok.json").string())).exitCode, 0);
   EXPECT_EQ(runAoreplay(fmt::format("compare {} {} --json - >/dev/full", report, report)).exitCode, 1);
   EXPECT_EQ(runAoreplay(fmt::format("compare {} {} >/dev/full", report, report)).exitCode, 1);
   EXPECT_EQ(runAoreplay("devices >/dev/full").exitCode, 1);
 }
 
-}  // namespace
-}  // namespace aor::test
-
-namespace aor::test {
-namespace {
-
 // Values given twice or empty, which used to pass (the later one won, or nothing was stored):
 // each is exit 2 naming the option, before any work.
 TEST(BadInputCli, RepeatedKeysAndEmptyValuesAreRefused) {
   const fs::path dir = scratchDir("repeated-values");
   const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
-  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
-  const std::string report = (dir / "run" / "report.json").string();
+  const std::string report = oneFrameReport(dir);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"sweep " + capture + " --grid slices=1,2 --grid slices=3", "--grid\": 'slices=3' is a second axis of key 'slices'"},
       {"sweep " + capture + " --grid technique=gtao --grid technique=sao", "is a second axis of key 'technique'"},
@@ -287,22 +279,14 @@ TEST(BadInputCli, RepeatedKeysAndEmptyValuesAreRefused) {
   EXPECT_FALSE(fs::exists(dir / "s.db")) << "nothing stored for an empty commit";
 }
 
-}  // namespace
-}  // namespace aor::test
-
-namespace aor::test {
-namespace {
-
 // `record` once added its tables to any SQLite file it was given; one that has tables of its own
 // and no aoreplay schema version is refused, and left as it was.
 TEST(BadInputCli, AnotherProgramsSqliteFileIsNotTakenAsAStore) {
   const fs::path dir = scratchDir("foreign-sqlite");
-  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
-  ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", capture, (dir / "run").string())).exitCode, 0);
+  const std::string report = oneFrameReport(dir);
   const fs::path db = dir / "notes.db";
   ASSERT_EQ(std::system(fmt::format("sqlite3 {} \"CREATE TABLE notes (x TEXT)\"", db.string()).c_str()), 0);
-  const auto r = runAoreplay(fmt::format("record {} --db {} --commit abc --ordinal 1", (dir / "run" / "report.json").string(),
-                                         db.string()));
+  const auto r = runAoreplay(fmt::format("record {} --db {} --commit abc --ordinal 1", report, db.string()));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("is an SQLite database of something else"), std::string::npos) << r.output;
   const fs::path tables = dir / "tables.txt";

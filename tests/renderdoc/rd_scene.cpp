@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene_renderer.h"
+#include "test_program_support.h"
 
 namespace fs = std::filesystem;
 using namespace aor::rdtest;
@@ -93,31 +94,6 @@ RENDERDOC_API_1_6_0* loadRenderDoc() {
   return api;
 }
 
-template <typename T>
-void writeBinary(const fs::path& path, const std::vector<T>& values) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(T)));
-  if (!out) usage("cannot write " + path.string());
-}
-
-nlohmann::json matrixJson(const glm::mat4& m) {
-  auto a = nlohmann::json::array();
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) a.push_back(double(m[c][r]));
-  return a;
-}
-
-// RenderDoc names its files after a template; the tests want NNNN.rdc.
-void moveNewestCapture(RENDERDOC_API_1_6_0* api, const fs::path& target) {
-  const uint32_t count = api->GetNumCaptures();
-  if (count == 0) usage("RenderDoc made no capture");
-  uint32_t length = 0;
-  api->GetCapture(count - 1, nullptr, &length, nullptr);
-  std::string path(length, '\0');
-  api->GetCapture(count - 1, path.data(), &length, nullptr);
-  path.resize(std::strlen(path.c_str()));
-  fs::rename(path, target);
-}
 
 }  // namespace
 
