@@ -183,8 +183,38 @@ def choose_event(frame, args, depth_id):
         what = "the depth target %s" % frame.name_of(depth_id) if depth_id is not None else "a depth target"
         raise ImportFailure("--event", "no draw in the capture writes %s; its draws: %s"
                             % (what, list_draws(frame, draws)))
+    return scene_draw(frame, with_depth)
+
+
+MAX_DEFAULT_EVENT_PROBES = 256  # draws looked at from the end for one that writes depth
+
+
+def writes_depth(frame):
+    """Whether the current event's draw tests and writes depth (a scene draw, not a composite)."""
+    state = frame.controller.GetPipelineState()
+    if state.IsCaptureVK():
+        ds = frame.controller.GetVulkanPipelineState().depthStencil
+        return bool(ds.depthTestEnable and ds.depthWriteEnable)
+    if state.IsCaptureGL():
+        ds = frame.controller.GetGLPipelineState().depthState
+        return bool(ds.depthEnable and ds.depthWrites)
+    return True
+
+
+def scene_draw(frame, with_depth):
+    """The last draw with a depth target that also tests and writes depth: full-screen copies and
+    post-processing after the scene (depth test or writes off) are passed over."""
+    skipped = 0
+    for a, m in reversed(with_depth[-MAX_DEFAULT_EVENT_PROBES:]):
+        frame.controller.SetFrameEvent(a.eventId, False)
+        if writes_depth(frame):
+            if not skipped:
+                return a, m, "last draw with a depth target"
+            return a, m, ("last draw that tests and writes depth (%d later draw%s with depth test or writes off "
+                          "passed over)" % (skipped, "" if skipped == 1 else "s"))
+        skipped += 1
     a, m = with_depth[-1]
-    return a, m, "last draw with a depth target"
+    return a, m, "last draw with a depth target (none of the last %d tests and writes depth)" % skipped
 
 
 def texture_dump(frame, rid, mip, layer, path, field):

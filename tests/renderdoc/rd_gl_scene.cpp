@@ -8,7 +8,7 @@
 //   READBACK_DIR/NNNN.normals   the RGBA16F normal target's bits (width*height*4 halves), same order
 //   READBACK_DIR/NNNN.json      width, height, depth format, clip_control, reversed, view and
 //                               projection (column-major, exactly what was uploaded)
-// Usage: rd_gl_scene --depth-format d16|d24|d24s8|d32f|d32fs8 [--clip-control] [--reversed] [--last-draw-points]
+// Usage: rd_gl_scene --depth-format d16|d24|d24s8|d32f|d32fs8 [--clip-control] [--reversed] [--last-draw-points] [--final-copy]
 //                    [--size WxH] [--frames N] [--capture-dir DIR] --readback-dir DIR
 // Projection: by default GL's own conventions (clip z in [-1, 1], y up, glm::perspectiveRH_NO);
 // --clip-control calls glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE) and uploads scene.h's
@@ -73,6 +73,7 @@ struct Options {
   std::string depthFormatName;
   bool clipControl = false, reversed = false;
   bool lastDrawPoints = false;  // the last box drawn as points: a draw the self-check cannot follow
+  bool finalCopy = false;       // a full-screen draw after the scene, depth test and writes off
   int width = 160, height = 90, frames = 1;
   fs::path captureDir, readbackDir;
 };
@@ -97,6 +98,8 @@ Options parseOptions(int argc, char** argv) {
       o.clipControl = true;
     } else if (a == "--last-draw-points") {
       o.lastDrawPoints = true;
+    } else if (a == "--final-copy") {
+      o.finalCopy = true;
     } else if (a == "--reversed") {
       o.reversed = true;
     } else if (a == "--size") {
@@ -212,27 +215,43 @@ GLuint compile(GLenum stage, const char* source) {
 
 constexpr GLint kClearStencil = 0xA5;
 
+GLuint link(const char* vertex, const char* fragment) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex), frag = compile(GL_FRAGMENT_SHADER, fragment);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, frag);
+  glLinkProgram(program);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("program link: ") + log);
+  }
+  glDeleteShader(vs);
+  glDeleteShader(frag);
+  return program;
+}
+
+// --final-copy: a full-screen triangle after the scene, depth test and writes off with the
+// depth target still bound, as an engine's final composite is.
+constexpr const char* kCopyVert = R"glsl(#version 330 core
+void main() { gl_Position = vec4(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1), 0.0, 1.0); }
+)glsl";
+constexpr const char* kCopyFrag = R"glsl(#version 330 core
+out vec4 colour;
+void main() { colour = vec4(0.0, 0.0, 1.0, 1.0); }
+)glsl";
+
 struct SceneGl {
-  GLuint program = 0, vao = 0, vertexBuffer = 0, uniformBuffer = 0;
+  GLuint program = 0, copyProgram = 0, vao = 0, vertexBuffer = 0, uniformBuffer = 0;
   GLuint framebuffer = 0, normalTexture = 0, depthTexture = 0;
   GLint modelLocation = -1;
   std::vector<uint32_t> firstVertex;
 
   SceneGl(const Options& o) {
-    const GLuint vs = compile(GL_VERTEX_SHADER, kGlSceneVert), frag = compile(GL_FRAGMENT_SHADER, kGlSceneFrag);
-    program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, frag);
-    glLinkProgram(program);
-    GLint ok = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      char log[2048];
-      glGetProgramInfoLog(program, sizeof log, nullptr, log);
-      throw std::runtime_error(std::string("program link: ") + log);
-    }
-    glDeleteShader(vs);
-    glDeleteShader(frag);
+    program = link(kGlSceneVert, kGlSceneFrag);
+    if (o.finalCopy) copyProgram = link(kCopyVert, kCopyFrag);
     const GLuint block = glGetUniformBlockIndex(program, "SceneData");
     if (block == GL_INVALID_INDEX) throw std::runtime_error("no uniform block SceneData");
     glUniformBlockBinding(program, block, 0);
@@ -316,6 +335,12 @@ struct SceneGl {
       glUniformMatrix4fv(modelLocation, 1, GL_FALSE, glm::value_ptr(model));
       const bool points = o.lastDrawPoints && object + 2 == firstVertex.size();
       glDrawArrays(points ? GL_POINTS : GL_TRIANGLES, GLint(firstVertex[object]), GLsizei(firstVertex[object + 1] - firstVertex[object]));
+    }
+    if (copyProgram) {
+      glDisable(GL_DEPTH_TEST);
+      glDepthMask(GL_FALSE);
+      glUseProgram(copyProgram);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glBindVertexArray(0);
     glFinish();

@@ -154,6 +154,20 @@ INSTANTIATE_TEST_SUITE_P(
       return std::string(info.param.format) + mode;
     });
 
+// A frame that ends with a full-screen composite (depth test and writes off, depth target bound),
+// as Godot 3's do: the default event is the scene's last depth-writing draw, not the composite.
+TEST(SelfCheck, TheDefaultEventPassesOverAFinalCompositeToTheScenesLastDraw) {
+  const fs::path dir = renderGlScene(fmt::format("self-check-final-copy-{}", getpid()), "d24s8", "--final-copy");
+  const Command r = import(dir, "imported", kGlCamera);
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("event 26 glDrawArrays(): last draw that tests and writes depth (1 later draw with depth test or "
+                          "writes off passed over)"),
+            std::string::npos)
+      << r.output;
+  const Command composite = import(dir, "composite", std::string(kGlCamera) + " --event 30");
+  EXPECT_EQ(composite.exitCode, 2) << "the composite itself has no camera block: " << composite.output;
+}
+
 // Each mistake the import once made on GL frames (README's "The self-check"), made on purpose.
 TEST(SelfCheck, EachGlMistakeIsCaught) {
   const fs::path dir = renderGlScene(fmt::format("self-check-gl-faults-{}", getpid()), "d24s8", "");
