@@ -2,20 +2,13 @@
 // of the A and B binaries (both this one by default), in ABBA order so that drift over the
 // experiment (a machine warming up, load coming and going) falls on both sides alike, keeps every
 // run's report.json under DIR/a/ and DIR/b/, and judges them as `compare DIR/a DIR/b` does.
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <wordexp.h>
-
-#include <signal.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -26,9 +19,8 @@
 #include "report/html/compare_page.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
+#include "import/subprocess.h"
 #include "report/output_directory.h"
-
-extern char** environ;
 
 namespace aor::cli {
 namespace {
@@ -81,59 +73,6 @@ std::string resolveBinary(const std::string& given, const std::string& flag) {
   return fs::absolute(given).string();
 }
 
-// The spawned run takes signals as any program does: aoreplay's main thread blocks them for its
-// signal thread, and a blocked mask would survive the exec (a killed ab left its run going).
-void defaultSignals(posix_spawnattr_t& attributes) {
-  sigset_t none, usual;
-  sigemptyset(&none);
-  sigemptyset(&usual);
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&usual, s);
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setsigmask(&attributes, &none);
-  posix_spawnattr_setsigdefault(&attributes, &usual);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-}
-
-// Waits for `pid`, killing it (SIGTERM, then SIGKILL 10 s later) past `limit`.
-int waitWithin(pid_t pid, std::chrono::seconds limit, bool& timedOut) {
-  const auto start = std::chrono::steady_clock::now();
-  int status = 0;
-  for (bool termSent = false;;) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid) return status;
-    if (done < 0 && errno != EINTR) throw std::runtime_error(fmt::format("waiting for a run: {}", std::strerror(errno)));
-    const auto elapsed = std::chrono::steady_clock::now() - start;
-    if (elapsed > limit && !termSent) ::kill(pid, SIGTERM), termSent = timedOut = true;
-    if (elapsed > limit + std::chrono::seconds(10)) ::kill(pid, SIGKILL);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-}
-
-// Runs argv with stdin from /dev/null and stdout and stderr into `log`; returns the exit status
-// (128 + the signal when it was killed by one). A run past `limit` is killed (timedOut set); a
-// signal that ends ab ends the run too (report/output_directory.h, registerChildProcess).
-int runProcess(const std::vector<std::string>& argv, const fs::path& log, std::chrono::seconds limit, bool& timedOut) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawnattr_t attributes;
-  defaultSignals(attributes);
-  std::vector<char*> raw;
-  for (const auto& a : argv) raw.push_back(const_cast<char*>(a.c_str()));
-  raw.push_back(nullptr);
-  pid_t pid = 0;
-  int error = posix_spawn(&pid, raw[0], &actions, &attributes, raw.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  if (error != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", argv[0], std::strerror(error)));
-  registerChildProcess(pid);
-  const int status = waitWithin(pid, limit, timedOut);
-  forgetChildProcess(pid);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 std::string lastLines(const fs::path& file, size_t count) {
   std::ifstream in(file);
   std::vector<std::string> lines;
@@ -182,10 +121,11 @@ int abCommand(const AbArgs& args) {
     fmt::print(stderr, "ab: run {}/{} (round {}/{}): {} ...", i + 1, order.size(), i / 4 + 1, args.rounds, name);
     std::fflush(stderr);
     auto start = std::chrono::steady_clock::now();
-    bool timedOut = false;
-    int status = runProcess(argv, log, std::chrono::seconds(args.runTimeout), timedOut);
+    const ProcessResult run = runProcess(argv, {}, log, log, std::chrono::seconds(args.runTimeout));
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (timedOut) {
+    if (!run.started) throw std::runtime_error(fmt::format("cannot start {}: {}", argv[0], run.startError));
+    const int status = run.signal ? 128 + run.signal : run.exitCode;
+    if (run.timedOut) {
       fmt::print(stderr, " killed after {} s\nab: {} ran past --run-timeout {}; the last lines of its output:\n{}ab: nothing "
                          "was kept\n",
                  args.runTimeout, name, args.runTimeout, lastLines(log, 20));

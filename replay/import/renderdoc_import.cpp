@@ -83,12 +83,6 @@ ApiConventions withFault(ApiConventions c, ImportFault fault) {
   return c;
 }
 
-double quantumOf(const std::string& format) {
-  if (format == "D16") return 1.0 / 65535.0;
-  if (format == "D24" || format == "D24S8") return 1.0 / 16777215.0;
-  return 0.0;
-}
-
 // The image's rows in reverse order: GL's bottom-up rows to the capture's top-down ones.
 std::vector<float> flipRows(const std::vector<float>& values, int width, int height, int components) {
   const size_t row = size_t(width) * size_t(components);
@@ -164,7 +158,7 @@ std::vector<float> importDepth(const json& dump, const fs::path& folder, const R
   const DepthDecodeFault fault = o.fault == ImportFault::D24LowBits ? DepthDecodeFault::Unorm24LowBits
                                                                     : DepthDecodeFault::None;
   const std::vector<float> depth = decodeDepth(texels, facts.applied.api, fault);
-  facts.depthQuantum = quantumOf(texels.format);
+  facts.depthQuantum = depthFormatStep(texels.format);
   facts.viewport = {v.at("x"), v.at("y"), v.at("width"), v.at("height")};
   ViewportRect& rect = facts.rect;
   rect = viewportRect(v.at("x"), v.at("y"), v.at("width"), v.at("height"), range.at(0), range.at(1), texels.width,

@@ -21,12 +21,13 @@ namespace {
                             const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
                             int errorPipe) {
   const int out = ::open(stdoutFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const int err = ::open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // One file for both: shared, so neither overwrites the other.
+  const int err = stderrFile == stdoutFile ? out : ::open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   const int in = ::open("/dev/null", O_RDONLY);
   if (out >= 0) ::dup2(out, STDOUT_FILENO);
   if (err >= 0) ::dup2(err, STDERR_FILENO);
   if (in >= 0) ::dup2(in, STDIN_FILENO);
-  // The helper ends with aoreplay (a signal that ends aoreplay would else leave it replaying), and
+  // The child ends with aoreplay (a signal that ends aoreplay would else leave it running), and
   // takes the usual signals itself: aoreplay's main thread blocks them for its signal thread, and
   // a blocked mask survives exec.
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);

@@ -1,6 +1,7 @@
 #pragma once
-// Runs a helper program (the RenderDoc dump script's Python) with its output sent to files and a
-// time limit, so a helper that crashes or hangs on a bad file cannot take aoreplay with it.
+// Runs a child program (the RenderDoc dump script's Python, `ab`'s runs) with its output sent to
+// files and a time limit, so a child that crashes or hangs cannot take aoreplay with it. The child
+// takes SIGINT, SIGTERM and SIGHUP as any program does and is killed when aoreplay ends.
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -18,7 +19,8 @@ struct ProcessResult {
 };
 
 // `argv[0]` is looked up on PATH when it has no slash. `environment` adds to (or replaces in) the
-// current environment. stdout and stderr go to the two files.
+// current environment. stdout and stderr go to the two files (one file when they are the same
+// path). Past `timeLimit` the child is killed (SIGKILL) and `timedOut` set.
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
                          const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
                          std::chrono::seconds timeLimit);

@@ -115,6 +115,12 @@ void checkSize(const TexelImage& image, size_t bytesPerPixel) {
 
 }  // namespace
 
+double depthFormatStep(const std::string& format) {
+  if (format == "D16") return 1.0 / 65535.0;
+  if (format == "D24" || format == "D24S8") return 1.0 / 16777215.0;
+  return 0.0;
+}
+
 std::string supportedDepthFormats(const std::string& api) {
   std::string names;
   for (const DepthLayout& layout : depthLayouts())

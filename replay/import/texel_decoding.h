@@ -24,6 +24,8 @@ enum class DepthDecodeFault { None, Unorm24LowBits };
 std::vector<float> decodeDepth(const TexelImage& image, const std::string& api,
                                DepthDecodeFault fault = DepthDecodeFault::None);
 std::string supportedDepthFormats(const std::string& api);
+// One step of a unorm depth format (1 / (2^bits - 1)); 0 for float depth.
+double depthFormatStep(const std::string& format);
 
 // Normals, xyz interleaved per pixel. Float targets are taken as they hold them; fixed-point ones
 // are unpacked (unorm: 2c - 1, snorm: c) and normalised (a zero vector stays zero).

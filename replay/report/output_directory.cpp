@@ -127,10 +127,6 @@ std::set<fs::path>& activeScratchFolders() {
   static std::set<fs::path> s;
   return s;
 }
-std::set<int>& activeChildren() {
-  static std::set<int> s;
-  return s;
-}
 
 // ---- file system helpers -------------------------------------------------------------------------------
 
@@ -567,18 +563,6 @@ void writeFileAtomically(const fs::path& path, const std::string& text, const st
   forget();
 }
 
-// ---- child processes -------------------------------------------------------------------------------
-
-void registerChildProcess(int pid) {
-  std::lock_guard<std::mutex> guard(outputsMutex());
-  activeChildren().insert(pid);
-}
-
-void forgetChildProcess(int pid) {
-  std::lock_guard<std::mutex> guard(outputsMutex());
-  activeChildren().erase(pid);
-}
-
 // ---- scratch folders -------------------------------------------------------------------------------
 
 ScratchFolder::ScratchFolder(const std::string& prefix) {
@@ -611,7 +595,6 @@ void cleanUpOutputsOnTermination() {
     {
       std::lock_guard<std::mutex> guard(outputsMutex());
       for (OutputDirectory* d : activeDirectories()) d->abandon();
-      for (int child : activeChildren()) ::kill(child, SIGTERM);
       for (const auto& tmp : activeTemporaryFiles()) ::unlink(tmp.c_str());
       std::error_code ignored;
       for (const auto& folder : activeScratchFolders()) fs::remove_all(folder, ignored);

@@ -89,11 +89,6 @@ class ScratchFolder {
   std::filesystem::path path_;
 };
 
-// A child process the termination handler below kills (SIGTERM) before it ends aoreplay, so a
-// killed `ab` leaves no run behind. Register after starting the child, forget after reaping it.
-void registerChildProcess(int pid);
-void forgetChildProcess(int pid);
-
 // Call first in main(), before any thread starts: SIGINT, SIGTERM and SIGHUP are then handled on a
 // thread of their own, which removes the staging folders, locks and temporary files of the outputs
 // in progress and the scratch folders (a commit under way finishes first) and then ends the process

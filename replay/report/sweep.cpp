@@ -246,24 +246,29 @@ size_t nameWidth(const std::vector<const SweepRow*>& rows) {
   return width;
 }
 
-// Rows' pass times, the passes as columns, with their total, errors and Pareto flag: the table of
-// a sweep of one technique.
-std::string passTable(const std::vector<const SweepRow*>& rows, bool totals) {
-  const size_t width = nameWidth(rows);
-  std::vector<std::string> passes;
+// Every pass name of the rows, in first-seen order.
+std::vector<std::string> passNames(const std::vector<const SweepRow*>& rows) {
+  std::vector<std::string> names;
   for (const auto* row : rows)
     for (const auto& [name, ms] : row->passMs)
-      if (std::find(passes.begin(), passes.end(), name) == passes.end()) passes.push_back(name);
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  return names;
+}
+
+// Rows' pass times, the passes as columns, with their total, errors and Pareto flag: the table of
+// a sweep of one technique.
+std::string passTable(const std::vector<const SweepRow*>& rows) {
+  const size_t width = nameWidth(rows);
+  const std::vector<std::string> passes = passNames(rows);
   std::string table = fmt::format("{:<{}}", "configuration", width);
   for (const auto& p : passes) table += fmt::format(" {:>{}}", p, std::max<size_t>(p.size(), 8));
-  if (totals) table += fmt::format(" {:>10} {:>9} {:>9} {:>7} {:>6}", "total ms", "RMSE", "halo RMSE", "SSIM", "pareto");
+  table += fmt::format(" {:>10} {:>9} {:>9} {:>7} {:>6}", "total ms", "RMSE", "halo RMSE", "SSIM", "pareto");
   table += "\n";
   for (const auto* row : rows) {
     table += fmt::format("{:<{}}", row->config.name, width);
     for (const auto& p : passes) table += " " + msCell(*row, p, std::max<size_t>(p.size(), 8));
-    if (totals)
-      table += fmt::format(" {:>10.3f} {:>9.5f} {:>9.5f} {:>7.4f} {:>6}", row->totalMs, row->rmse, row->haloRmse, row->ssim,
-                           row->pareto ? "*" : "");
+    table += fmt::format(" {:>10.3f} {:>9.5f} {:>9.5f} {:>7.4f} {:>6}", row->totalMs, row->rmse, row->haloRmse, row->ssim,
+                         row->pareto ? "*" : "");
     table += "\n";
   }
   return table;
@@ -286,10 +291,7 @@ std::string totalsTable(const std::vector<const SweepRow*>& rows) {
 // One technique's passes (rows) against its configurations (columns, by their # in the totals
 // table), split into blocks of columns so that no line passes 120 characters.
 std::string techniquePassTable(const std::vector<const SweepRow*>& rows, const std::vector<size_t>& numbers) {
-  std::vector<std::string> passes;
-  for (const auto* row : rows)
-    for (const auto& [name, ms] : row->passMs)
-      if (std::find(passes.begin(), passes.end(), name) == passes.end()) passes.push_back(name);
+  const std::vector<std::string> passes = passNames(rows);
   size_t width = 4;
   for (const auto& p : passes) width = std::max(width, p.size());
   const size_t perBlock = std::max<size_t>(1, (kTerminalColumns - width) / 10);
@@ -322,7 +324,7 @@ std::string sweepTable(const std::vector<SweepRow>& rows) {
   std::vector<const SweepRow*> all;
   for (const auto& row : rows) all.push_back(&row);
   const auto techniques = sweepTechniques(rows);
-  if (techniques.size() <= 1) return passTable(all, true);
+  if (techniques.size() <= 1) return passTable(all);
   std::string text = totalsTable(all);
   for (const auto& technique : techniques) {
     std::vector<const SweepRow*> own;
@@ -336,11 +338,9 @@ std::string sweepTable(const std::vector<SweepRow>& rows) {
 }
 
 std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows) {
-  std::vector<std::string> names;
-  for (const auto& row : rows)
-    for (const auto& [name, ms] : row.passMs)
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-  return names;
+  std::vector<const SweepRow*> pointers;
+  for (const auto& row : rows) pointers.push_back(&row);
+  return passNames(pointers);
 }
 
 }  // namespace aor
