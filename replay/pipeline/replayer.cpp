@@ -254,6 +254,7 @@ void checkTechnique(const VulkanContext& vk, const Capture& capture, const Repla
                                    names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
     }
   if (t.checkCapture) t.checkCapture(settings, capture);
+  if (t.checkDeviceLimits) t.checkDeviceLimits(vk.info);
   if (t.missingDeviceExtensions) {
     auto missing = t.missingDeviceExtensions(settings, vk.info);
     if (!missing.empty())

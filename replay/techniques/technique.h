@@ -100,6 +100,10 @@ struct Technique {
   // Optional device extensions (vk/context.h) the settings would use on `device` when it offers
   // them (rtao's ray queries): the command's context enables them. Empty: none.
   std::function<std::vector<std::string>(const Settings& settings, const DeviceInfo& device)> deviceExtensions;
+  // Checks the passes' shaders against `device`'s limits (vk/device_limits.h) before any GPU work:
+  // throws InputError naming the pass, the limit and the value. Built-ins leave it empty (their
+  // pipelines are still checked when created).
+  std::function<void(const DeviceInfo& device)> checkDeviceLimits;
   // Per-replay state (optional).
   std::function<std::unique_ptr<TechniqueState>(const ReplaySetup& setup)> prepare;
 

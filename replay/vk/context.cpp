@@ -110,6 +110,7 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
   std::vector<VkExtensionProperties> extensions(count);
   vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
   for (const auto& e : extensions) info.extensions.push_back(e.extensionName);
+  info.limits = readDeviceLimits(device);
   return info;
 }
 

@@ -8,6 +8,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/device_limits.h"
+
 namespace aor {
 
 class OpCounter;
@@ -37,6 +39,7 @@ struct DeviceInfo {
   bool isLavapipe = false;
   bool isCpu = false;  // a CPU implementation (lavapipe, llvmpipe, SwiftShader): it computes on the host's cores
   std::vector<std::string> extensions;  // every device extension the driver offers
+  DeviceLimits limits;
   bool hasExtension(const std::string& name) const;
 };
 

@@ -166,6 +166,8 @@ ComputePipeline createComputePipeline(const VulkanContext& ctx, std::span<const 
     for (const auto& s : specialization)
       if (p.shader.localSizeSpecId[d] >= 0 && s.id == uint32_t(p.shader.localSizeSpecId[d])) p.localSize[d] = s.value;
   }
+  if (auto exceeded = exceededLimit(p.shader, {p.localSize[0], p.localSize[1], p.localSize[2]}, ctx.info.limits))
+    throw std::runtime_error(fmt::format("shader {} needs {} on device '{}'", name, *exceeded, ctx.info.name));
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
   for (uint32_t i = 0; i < p.shader.bindings.size(); ++i)
     layoutBindings.push_back({i, p.shader.bindings[i].type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});

@@ -1,5 +1,6 @@
 #include "vk/shader_reflection.h"
 
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string_view>
@@ -26,6 +27,33 @@ constexpr ResourceKind kResourceKinds[] = {
     {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
     {SPVC_RESOURCE_TYPE_ACCELERATION_STRUCTURE, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
 };
+
+// Bytes of the module's Workgroup variables (GLSL `shared`), each the sum of its members' natural
+// sizes: SPIRV-Cross's C interface lists no such variables, and the walk over the module's type
+// declarations is short. Drivers may pad; this is the least a device must hold.
+uint64_t workgroupMemoryBytes(std::span<const uint32_t> spirv) {
+  constexpr uint32_t kTypeBool = 20, kTypeInt = 21, kTypeFloat = 22, kTypeVector = 23, kTypeMatrix = 24, kTypeArray = 28,
+                     kTypeStruct = 30, kTypePointer = 32, kConstant = 43, kVariable = 59, kWorkgroup = 4;
+  std::map<uint32_t, uint64_t> size, constant, pointee;
+  uint64_t total = 0;
+  for (size_t at = 5; at < spirv.size();) {
+    const uint32_t op = spirv[at] & 0xffff, words = spirv[at] >> 16;
+    if (words == 0 || at + words > spirv.size()) break;
+    const uint32_t* w = &spirv[at];
+    auto sizeOf = [&](uint32_t id) { return size.count(id) ? size[id] : 0; };
+    if (op == kTypeBool) size[w[1]] = 4;
+    if ((op == kTypeInt || op == kTypeFloat) && words >= 3) size[w[1]] = w[2] / 8;
+    if ((op == kTypeVector || op == kTypeMatrix) && words >= 4) size[w[1]] = sizeOf(w[2]) * w[3];
+    if (op == kTypeArray && words >= 4) size[w[1]] = sizeOf(w[2]) * (constant.count(w[3]) ? constant[w[3]] : 0);
+    if (op == kTypeStruct)
+      for (uint32_t m = 2; m < words; ++m) size[w[1]] += sizeOf(w[m]);
+    if (op == kConstant && words >= 4) constant[w[2]] = w[3];
+    if (op == kTypePointer && words >= 4 && w[2] == kWorkgroup) pointee[w[1]] = sizeOf(w[3]);
+    if (op == kVariable && words >= 4 && w[3] == kWorkgroup) total += pointee.count(w[1]) ? pointee[w[1]] : 0;
+    at += words;
+  }
+  return total;
+}
 
 }  // namespace
 
@@ -99,6 +127,7 @@ ShaderInterface reflectComputeShader(std::span<const uint32_t> spirv, const std:
     out.localSizeSpecId[d] = int(dims[d].constant_id);
     out.localSize[d] = spvc_constant_get_scalar_u32(spvc_compiler_get_constant_handle(compiler, dims[d].id), 0, 0);
   }
+  out.workgroupMemoryBytes = workgroupMemoryBytes(spirv);
   return out;
 }
 

@@ -22,6 +22,7 @@ struct ShaderInterface {
   uint32_t localSize[3] = {1, 1, 1};  // the defaults where a dimension is a specialisation constant
   int localSizeSpecId[3] = {-1, -1, -1};  // constant_id of each dimension given by one, else -1
   uint32_t pushConstantBytes = 0;
+  uint64_t workgroupMemoryBytes = 0;  // its `shared` variables, at their natural sizes
   // The counting build's AoOpCounts buffer (shaders/counting/count_ops.glsl), set apart from
   // `bindings`: its binding number, or -1 in an ordinary build.
   int opCounterBinding = -1;

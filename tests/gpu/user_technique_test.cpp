@@ -2,6 +2,8 @@
 // built-in, bad technique files and shaders refused with exit 2 and nothing written, the generated
 // header, the shader cache, history / seed000 / half-scale writes, and FORMAT.md's own example
 // compiled and run so the document cannot drift from the tool.
+#include <sys/stat.h>
+
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -274,6 +276,58 @@ TEST(UserTechniqueCache, ASecondCompileIsACacheHitAndAChangedIncludeIsCompiledAn
   auto third = compileUserPass(spec, 0);
   EXPECT_FALSE(third.fromCache);
   EXPECT_NE(third.spirv, first.spirv);
+  ::setenv("AOREPLAY_SHADER_CACHE", previous.c_str(), 1);
+}
+
+// Issue 44: a cache entry is input like any other. One that is a FIFO, a link to /dev/zero, torn,
+// or another shader's valid SPIR-V under this key is not used: the shader is compiled anew (the
+// same SPIR-V as a cold compile), the entry replaced, and nothing is blamed on the user's shader.
+TEST(UserTechniqueCache, ABadEntryIsCompiledAnewAndReplacedNeverTrusted) {
+  fs::path cache = scratchDir("cache-bad");
+  std::string previous = std::getenv("AOREPLAY_SHADER_CACHE") ? std::getenv("AOREPLAY_SHADER_CACHE") : "";
+  ::setenv("AOREPLAY_SHADER_CACHE", cache.c_str(), 1);
+  auto specOf = [](const std::string& name, const std::string& value) {
+    std::string shader = "#version 450\n#include \"aoreplay.glsl\"\nvoid main() { imageStore(out_ao, ivec2(gl_GlobalInvocationID.xy), vec4(" +
+                         value + ")); }\n";
+    return loadUserTechniqueSpec(writeTechnique(name, onePassJson(name, "", "[]"), {{"shade.comp", shader}}), "technique.json");
+  };
+  auto spec = specOf("cachebad", "0.5"), other = specOf("cacheother", "0.25");
+  auto entries = [&] {
+    std::vector<fs::path> all;
+    for (const auto& e : fs::directory_iterator(cache)) all.push_back(e.path());
+    return all;
+  };
+  const auto cold = compileUserPass(spec, 0);
+  ASSERT_EQ(entries().size(), 1u);
+  const fs::path entry = entries()[0];
+  const auto otherCold = compileUserPass(other, 0);
+  ASSERT_EQ(entries().size(), 2u);
+  const fs::path otherEntry = entries()[0] == entry ? entries()[1] : entries()[0];
+  ASSERT_NE(cold.spirv, otherCold.spirv);
+  const std::string good = readText(entry);
+
+  auto expectRecompiled = [&](const std::string& what) {
+    auto again = compileUserPass(spec, 0);
+    EXPECT_FALSE(again.fromCache) << what;
+    EXPECT_EQ(again.spirv, cold.spirv) << what;
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(entry))) << what;
+    EXPECT_EQ(readText(entry), good) << what << ": the entry is replaced by a good one";
+    EXPECT_TRUE(compileUserPass(spec, 0).fromCache) << what;
+  };
+  fs::remove(entry);
+  ASSERT_EQ(::mkfifo(entry.c_str(), 0600), 0);
+  expectRecompiled("a FIFO");
+  fs::remove(entry);
+  fs::create_symlink("/dev/zero", entry);
+  expectRecompiled("a link to /dev/zero");
+  writeFile(entry, good.substr(0, good.size() - 6));
+  expectRecompiled("a torn entry");
+  std::string flipped = good;
+  flipped[flipped.size() - 40] ^= 0x5a;
+  writeFile(entry, flipped);
+  expectRecompiled("one byte of its SPIR-V changed");
+  fs::copy_file(otherEntry, entry, fs::copy_options::overwrite_existing);
+  expectRecompiled("another shader's entry under this key");
   ::setenv("AOREPLAY_SHADER_CACHE", previous.c_str(), 1);
 }
 

@@ -11,7 +11,9 @@
 
 #include <fmt/format.h>
 #include <shaderc/shaderc.hpp>
+#include <spirv-tools/libspirv.hpp>
 
+#include "capture/content_hash.h"
 #include "capture/input_error.h"
 #include "embedded_shaders.h"
 #include "capture/json_input.h"
@@ -33,17 +35,10 @@ constexpr size_t kMaxIncludeDepth = 32;
 // next one twice, 24 deep: 2^24 expansions) ran past 125 s at 3.3 GB before it.
 constexpr size_t kMaxIncludes = 1000;
 constexpr uint64_t kMaxIncludedBytes = 16u << 20;
-constexpr const char* kCacheMagic = "aoreplay-spirv-cache 1";
+constexpr const char* kCacheMagic = "aoreplay-spirv-cache 2";
+// What the compile options below are, in every cache key.
+constexpr const char* kCompileOptions = "glsl compute, vulkan 1.2, no optimisation";
 
-// 64-bit FNV-1a: a cache key, not a defence (a colliding entry is still checked by reflection).
-uint64_t fnv1a(std::string_view data, uint64_t hash = 0xcbf29ce484222325ull) {
-  for (unsigned char c : data) {
-    hash ^= c;
-    hash *= 0x100000001b3ull;
-  }
-  return hash;
-}
-std::string hex(uint64_t v) { return fmt::format("{:016x}", v); }
 
 // How messages name a file of the technique: the technique's path as given, then the file's.
 std::string displayOf(const UserTechniqueSpec& spec, const std::string& relative) {
@@ -157,34 +152,52 @@ void checkInterface(const std::vector<uint32_t>& spirv, const UserTechniqueSpec&
   if (iface.pushConstantBytes != 0) fail(spec, passIndex, fmt::format("{}: error: declares push constants; use params", display));
 }
 
-// --- The disk cache: "aoreplay-spirv-cache 1\n", one "include HASH PATH" line per #included file,
-// "spirv N\n", then N words. An entry whose includes changed, or that cannot be read whole, is
-// compiled anew.
-std::optional<std::vector<uint32_t>> readCache(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string line;
-  if (!std::getline(in, line) || line != kCacheMagic) return std::nullopt;
-  while (std::getline(in, line)) {
-    if (line.rfind("include ", 0) == 0) {
-      std::string hash = line.substr(8, 16), path = line.size() > 25 ? line.substr(25) : "";
-      std::ifstream source(path, std::ios::binary);
-      if (!source) return std::nullopt;
-      std::string text((std::istreambuf_iterator<char>(source)), std::istreambuf_iterator<char>());
-      if (hex(fnv1a(text)) != hash) return std::nullopt;
-      continue;
-    }
-    size_t words = 0;
-    if (std::sscanf(line.c_str(), "spirv %zu", &words) != 1 || words == 0 || words > (16u << 20)) return std::nullopt;
-    std::vector<uint32_t> code(words);
-    if (!in.read(reinterpret_cast<char*>(code.data()), std::streamsize(words * 4))) return std::nullopt;
-    if (code[0] != 0x07230203u) return std::nullopt;
-    return code;
-  }
-  return std::nullopt;
+// --- The disk cache. An entry is "aoreplay-spirv-cache 2\n", "key SHA256\n" (of everything that
+// produced it: compiler, options, header, shader path and text), one "include SHA256 PATH" line per
+// #included file, "spirv N SHA256\n", then N words. It is read like any input (a regular file, bounded),
+// and used only when its key and includes match and its SPIR-V validates: anything else (a FIFO,
+// a link to a device, a torn or foreign entry) is a miss, compiled anew and replaced, so a bad
+// entry is never blamed on the user's shader.
+constexpr uint64_t kMaxCacheEntryBytes = 64u << 20;
+
+struct CacheMiss {
+  std::string reason;  // empty: no entry
+};
+
+std::vector<uint32_t> validSpirv(std::string_view bytes) {
+  if (bytes.empty() || bytes.size() % 4 != 0) throw std::runtime_error("its SPIR-V is not a whole number of words");
+  std::vector<uint32_t> code(bytes.size() / 4);
+  std::memcpy(code.data(), bytes.data(), bytes.size());
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_2);
+  std::string problem;
+  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t&, const char* m) {
+    if (problem.empty()) problem = m;
+  });
+  if (!tools.Validate(code)) throw std::runtime_error("its SPIR-V does not validate: " + problem);
+  return code;
 }
 
-void writeCache(const fs::path& file, const Sources& includes, const std::vector<uint32_t>& code) {
+std::vector<uint32_t> readCacheEntry(const fs::path& file, const std::string& key) {
+  const std::string text = readBoundedText(file, kMaxCacheEntryBytes, "it");
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line != kCacheMagic) throw std::runtime_error("it is not an entry of this version");
+  if (!std::getline(in, line) || line != "key " + key) throw std::runtime_error("it was made from other sources");
+  while (std::getline(in, line) && line.rfind("include ", 0) == 0) {
+    std::string hash = line.substr(8, 64), path = line.size() > 73 ? line.substr(73) : "";
+    if (textSha256(readBoundedText(path, kMaxSourceBytes, path)) != hash) throw std::runtime_error("an #included file changed");
+  }
+  size_t words = 0;
+  char hash[65] = {};
+  if (std::sscanf(line.c_str(), "spirv %zu %64s", &words, hash) != 2) throw std::runtime_error("it is damaged");
+  const auto offset = size_t(in.tellg());
+  if (in.fail() || text.size() - offset != words * 4) throw std::runtime_error("it is damaged (wrong length)");
+  const std::string_view code = std::string_view(text).substr(offset);
+  if (textSha256(code) != hash) throw std::runtime_error("it is damaged (checksum)");
+  return validSpirv(code);
+}
+
+void writeCache(const fs::path& file, const std::string& key, const Sources& includes, const std::vector<uint32_t>& code) {
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
   if (ec) return;  // a cache: without one every run compiles
@@ -193,9 +206,10 @@ void writeCache(const fs::path& file, const Sources& includes, const std::vector
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return;
-    out << kCacheMagic << "\n";
-    for (const auto& [path, text] : includes) out << "include " << hex(fnv1a(text)) << " " << path << "\n";
-    out << "spirv " << code.size() << "\n";
+    out << kCacheMagic << "\nkey " << key << "\n";
+    for (const auto& [path, text] : includes) out << "include " << textSha256(text) << " " << path << "\n";
+    const std::string_view bytes(reinterpret_cast<const char*>(code.data()), code.size() * 4);
+    out << "spirv " << code.size() << " " << textSha256(bytes) << "\n";
     out.write(reinterpret_cast<const char*>(code.data()), std::streamsize(code.size() * 4));
     if (!out) {
       out.close();
@@ -203,7 +217,7 @@ void writeCache(const fs::path& file, const Sources& includes, const std::vector
       return;
     }
   }
-  fs::rename(temporary, file, ec);  // atomic: a reader sees the old entry or the whole new one
+  fs::rename(temporary, file, ec);  // atomic, and replaces whatever was there (a FIFO, a link)
   if (ec) fs::remove(temporary, ec);
 }
 
@@ -230,16 +244,18 @@ CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passInd
   const std::string header = userPassHeader(spec, pass) + (countingBuild ? std::string(spirv::countOpsPrelude()) : "");
 
   const fs::path cacheFolder = userShaderCacheFolder();
-  uint64_t key = fnv1a(shadercVersion());
-  key = fnv1a(header, key);
-  key = fnv1a(pass.shader.string(), key);
-  key = fnv1a(source, key);
-  const fs::path cacheFile = cacheFolder.empty() ? fs::path() : cacheFolder / (hex(key) + ".spv");
-  if (!cacheFile.empty())
-    if (auto cached = readCache(cacheFile)) {
-      checkInterface(*cached, spec, passIndex, display);
-      return {std::move(*cached), true};
+  const std::string key = textSha256(fmt::format("{}\n{}\n{}\n{}\n{}\n{}", shadercVersion(), kCompileOptions, header.size(), header,
+                                                 pass.shader.string(), source));
+  const fs::path cacheFile = cacheFolder.empty() ? fs::path() : cacheFolder / (key.substr(0, 32) + ".spv");
+  if (!cacheFile.empty() && fs::exists(fs::symlink_status(cacheFile))) {
+    try {
+      auto cached = readCacheEntry(cacheFile, key);
+      checkInterface(cached, spec, passIndex, display);
+      return {std::move(cached), true};
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "note: shader cache entry {} not used ({}); compiling {} anew\n", cacheFile.string(), e.what(), display);
     }
+  }
 
   Sources includes;
   shaderc::Compiler compiler;
@@ -255,7 +271,7 @@ CompiledUserShader compileUserPass(const UserTechniqueSpec& spec, size_t passInd
     fail(spec, passIndex, compileMessage(result.GetErrorMessage()));
   std::vector<uint32_t> code(result.cbegin(), result.cend());
   checkInterface(code, spec, passIndex, display);
-  if (!cacheFile.empty()) writeCache(cacheFile, includes, code);
+  if (!cacheFile.empty()) writeCache(cacheFile, key, includes, code);
   return {std::move(code), false};
 }
 

@@ -1,9 +1,11 @@
 #pragma once
 // Compiles a user technique's pass to SPIR-V at run time with libshaderc: its shader, the pass's
 // generated aoreplay.glsl (techniques/user/user_header.h) and the technique's own #includes
-// (relative to its folder, the path rules of captures). The result is cached on disk by a hash of
-// the header, every source and the shaderc version, and checked against the header's interface.
-// A compile error is an InputError naming the shader's file and line.
+// (relative to its folder, the path rules of captures). The result is cached on disk under the
+// SHA-256 of what produced it (compiler, options, header, sources); an entry is used only when that
+// key and its includes match and its SPIR-V validates, else it is compiled anew and replaced. Every
+// result is checked against the header's interface. A compile error is an InputError naming the
+// shader's file and line.
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -14,7 +14,10 @@
 #include "techniques/user/shader_compiler.h"
 #include "techniques/user/user_header.h"
 #include "techniques/user/user_technique_spec.h"
+#include "vk/context.h"
+#include "vk/device_limits.h"
 #include "vk/op_counter.h"
+#include "vk/shader_reflection.h"
 
 namespace aor {
 namespace fs = std::filesystem;
@@ -246,6 +249,22 @@ HistoryNeeds userHistory(const UserTechniqueSpec& spec, const Settings& settings
   return needs;
 }
 
+// Every pass's shader against the device's limits, and the params block against its uniform range.
+void checkUserDeviceLimits(const UserTechnique& ut, const DeviceInfo& device) {
+  const UserTechniqueSpec& spec = ut.spec;
+  const uint64_t paramsBytes = spec.parameters.empty() ? 0 : userParamsBlock(spec, std::vector<double>(spec.parameters.size())).size() * 4;
+  for (size_t p = 0; p < spec.passes.size(); ++p) {
+    const UserPass& pass = spec.passes[p];
+    std::optional<std::string> exceeded = exceededLimit(reflectComputeShader(ut.spirv[p], pass.name), {pass.workgroup[0], pass.workgroup[1], 1},
+                                                        device.limits);
+    if (!exceeded && paramsBytes > device.limits.maxUniformBufferRange)
+      exceeded = fmt::format("a params block of {} bytes (the device's uniform range is {})", paramsBytes, device.limits.maxUniformBufferRange);
+    if (exceeded)
+      throw InputError(spec.display, std::nullopt, fmt::format("passes[{}]", p),
+                       fmt::format("pass '{}' needs {} on device '{}'", pass.name, *exceeded, device.name));
+  }
+}
+
 Technique makeTechnique(const UserTechnique& ut) {
   const UserTechniqueSpec& spec = ut.spec;
   Technique t;
@@ -267,6 +286,7 @@ Technique makeTechnique(const UserTechnique& ut) {
       t.debugViews.push_back({w.name, fmt::format("written by pass {} ({}, {} scale)", pass.name, w.formatName, w.half ? "half" : "full")});
   t.addPasses = [&ut](FrameBuilder& frame, const Settings& settings) { addUserPasses(ut, frame, settings); };
   t.history = [&ut](const Settings& settings) { return userHistory(ut.spec, settings); };
+  t.checkDeviceLimits = [&ut](const DeviceInfo& device) { checkUserDeviceLimits(ut, device); };
   if (spec.denoise == UserDenoise::Seed000 && !readsHistory(spec))
     t.withoutHistory = blocks::seed000WithoutTemporal;
   return t;

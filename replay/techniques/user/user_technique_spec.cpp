@@ -13,6 +13,7 @@
 #include "blocks/blocks.h"
 #include "capture/input_error.h"
 #include "capture/json_input.h"
+#include "vk/device_limits.h"
 
 namespace aor {
 namespace fs = std::filesystem;
@@ -22,6 +23,9 @@ namespace {
 
 constexpr const char* kFormat = "aoreplay-technique";
 constexpr int kVersion = 1;
+// A run times at most 256 passes (graph/executor.cpp); the shared front, the params upload and the
+// denoisers take fewer than 56 of them. Checked before any shader is compiled.
+constexpr size_t kMaxUserPasses = 200;
 constexpr uint32_t kMaxWorkgroupInvocations = 1024;  // Vulkan's guaranteed minimum of maxComputeWorkGroupInvocations
 
 // GLSL words a parameter key cannot be (it becomes a member of the `params` block).
@@ -332,6 +336,9 @@ UserTechniqueSpec parseSpec(const Checker& c, const ordered& doc, UserTechniqueS
     c.fail("version", fmt::format("version {} is not supported (this aoreplay reads version {})", doc["version"].dump(), kVersion));
   spec.name = c.name(c.required(doc, "name", ""), "name", "technique");
   if (auto p = doc.find("parameters"); p != doc.end()) spec.parameters = parseParameters(c, *p);
+  if (spec.parameters.size() * 4 > kMaxUpdateBufferBytes)
+    c.fail("parameters", fmt::format("{} parameters make a params block of {} bytes; at most {} ({} bytes, the most vkCmdUpdateBuffer writes)",
+                                     spec.parameters.size(), spec.parameters.size() * 4, kMaxUpdateBufferBytes / 4, kMaxUpdateBufferBytes));
   if (auto p = doc.find("presets"); p != doc.end()) spec.presets = parsePresets(c, *p, spec.parameters);
   if (auto d = doc.find("default_preset"); d != doc.end()) {
     spec.defaultPreset = c.string(*d, "default_preset");
@@ -340,6 +347,9 @@ UserTechniqueSpec parseSpec(const Checker& c, const ordered& doc, UserTechniqueS
   }
   const ordered& passes = c.array(c.required(doc, "passes", ""), "passes");
   if (passes.empty()) c.fail("passes", "a technique needs at least one pass");
+  if (passes.size() > kMaxUserPasses)
+    c.fail("passes", fmt::format("{} passes; a technique has at most {} (a run times every pass, and the shared passes need "
+                                 "timestamp slots too)", passes.size(), kMaxUserPasses));
   for (size_t i = 0; i < passes.size(); ++i) spec.passes.push_back(parsePass(c, passes[i], fmt::format("passes[{}]", i), spec.folder));
   spec.output = c.name(c.required(doc, "output", ""), "output", "image");
   if (auto d = doc.find("denoise"); d != doc.end()) {
