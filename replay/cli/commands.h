@@ -30,6 +30,9 @@ void registerTuneCommand(CLI::App& app);
 void registerRecordCommand(CLI::App& app);
 void registerTrendCommand(CLI::App& app);
 void registerExportCommand(CLI::App& app);
+// Every value of every option and argument of every command, refused when empty or holding a
+// control character (capture/plain_text.h): after all commands are registered.
+void checkEveryValue(CLI::App& app);
 int runSelected(CLI::App& app);
 
 }  // namespace aor::cli

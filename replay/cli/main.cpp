@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   aor::cli::registerRecordCommand(app);
   aor::cli::registerTrendCommand(app);
   aor::cli::registerExportCommand(app);
+  aor::cli::checkEveryValue(app);
   try {
     app.parse(argc, argv);
     return aor::cli::checkedStandardOutput(aor::cli::runSelected(app));

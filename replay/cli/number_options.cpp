@@ -31,9 +31,9 @@ CLI::Validator numberIn(double min, double max) {
                    [min, max](const std::string& text) { parseNumber(text, "", min, max); });
 }
 
-CLI::Validator wholeIn(int min, int max) {
+CLI::Validator wholeIn(long long min, long long max) {
   return validator(fmt::format("a whole number in [{}, {}]", min, max),
-                   [min, max](const std::string& text) { parseInt(text, "", min, max); });
+                   [min, max](const std::string& text) { parseLong(text, "", min, max); });
 }
 
 }  // namespace aor::cli

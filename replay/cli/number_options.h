@@ -10,6 +10,6 @@
 namespace aor::cli {
 
 CLI::Validator numberIn(double min, double max);
-CLI::Validator wholeIn(int min, int max);
+CLI::Validator wholeIn(long long min, long long max);
 
 }  // namespace aor::cli

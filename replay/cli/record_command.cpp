@@ -9,6 +9,7 @@
 #include "capture/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "cli/number_options.h"
 #include "cli/results_options.h"
 #include "results/schema.h"
 #include "results/store.h"
@@ -65,7 +66,8 @@ void registerRecordCommand(CLI::App& app) {
   cmd->add_option("--commit", args->commit, "the commit the runs timed (e.g. git rev-parse HEAD)")->required();
   cmd->add_option("--branch", args->branch, "its branch (kept with the commit)");
   auto* ordinal = cmd->add_option("--ordinal", args->ordinal,
-                                  "the commit's position in history, a whole number (e.g. git rev-list --count HEAD)");
+                                  "the commit's position in history, a whole number (e.g. git rev-list --count HEAD)")
+                     ->check(wholeIn(0, kLastPrintableSecond));
   auto* date = cmd->add_option("--date", args->date,
                                "or its commit date: YYYY-MM-DD[THH:MM[:SS]][Z|+HH:MM] or @SECONDS (git log -1 --format=@%ct)");
   ordinal->excludes(date);

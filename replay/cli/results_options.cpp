@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
+#include "options/number.h"
 
 namespace aor::cli {
 
@@ -19,12 +20,7 @@ double parseCommitDate(const std::string& text) {
     return InputError("", std::nullopt, "--date",
                       fmt::format("{} is not YYYY-MM-DD[THH:MM[:SS]][Z|+HH:MM] or @SECONDS", text));
   };
-  if (text.starts_with("@")) {
-    long long seconds = 0;
-    int used = 0;
-    if (std::sscanf(text.c_str() + 1, "%lld%n", &seconds, &used) != 1 || size_t(used) + 1 != text.size()) throw bad();
-    return double(seconds);
-  }
+  if (text.starts_with("@")) return double(parseLong(std::string_view(text).substr(1), "--date", kFirstPrintableSecond, kLastPrintableSecond));
   std::tm tm{};
   int used = 0;
   if (std::sscanf(text.c_str(), "%4d-%2d-%2d%n", &tm.tm_year, &tm.tm_mon, &tm.tm_mday, &used) != 3) throw bad();
@@ -52,7 +48,10 @@ double parseCommitDate(const std::string& text) {
     throw bad();
   tm.tm_year -= 1900;
   tm.tm_mon -= 1;
-  return double(timegm(&tm) - offset);
+  const long long seconds = timegm(&tm) - offset;
+  if (seconds < kFirstPrintableSecond || seconds > kLastPrintableSecond)
+    throw InputError("", std::nullopt, "--date", fmt::format("{} is outside 0001-01-01 .. 9999-12-31, the dates every export prints", text));
+  return double(seconds);
 }
 
 }  // namespace aor::cli

@@ -33,6 +33,7 @@ struct SweepArgs {
   std::string capture;
   std::string presets;  // comma-separated; empty: every preset of each technique
   std::vector<std::string> grid;
+  long long maxConfigurations = kDefaultMaxConfigurations;
   std::vector<std::string> assignments;
   std::string settingsFile;  // --settings FILE: technique, preset, keys and radius scale to start from
   std::string frames;
@@ -120,6 +121,7 @@ int sweepCommand(const SweepArgs& args) {
   range.frames = args.frames;
   auto [begin, end] = range.frameRange(capture);
   SweepRequest request{splitPresets(args.presets), args.grid, args.assignments};
+  request.maxConfigurations = size_t(args.maxConfigurations);
   SettingsRecipe base{request.defaultTechnique, "", {}, 1.0};
   if (!args.settingsFile.empty()) {
     base = readSettingsFile(args.settingsFile);
@@ -187,6 +189,10 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
   cmd->add_option("--grid", args->grid,
                   "KEY=v1,v2,..., repeatable: every preset is run with every combination; KEY is `technique` or a key "
                   "of a technique in the sweep (applied to those that have it)");
+  cmd->add_option("--max-configurations", args->maxConfigurations,
+                  "refuse a sweep of more configurations than this (each is a run of the capture)")
+      ->check(wholeIn(1, 100'000'000))
+      ->capture_default_str();
   cmd->add_option("--set", args->assignments,
                   "KEY=VALUE applied to every configuration whose technique has the key, before the grid");
   cmd->add_option("--settings", args->settingsFile,

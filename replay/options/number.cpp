@@ -26,6 +26,10 @@ int parseInt(std::string_view text, const std::string& option, int min, int max)
   return parseWhole<int>(text, option, min, max, "a whole number");
 }
 
+long long parseLong(std::string_view text, const std::string& option, long long min, long long max) {
+  return parseWhole<long long>(text, option, min, max, "a whole number");
+}
+
 double parseNumber(std::string_view text, const std::string& option, double min, double max) {
   return parseWhole<double>(text, option, min, max, "a number");
 }

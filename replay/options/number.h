@@ -9,6 +9,7 @@
 namespace aor {
 
 int parseInt(std::string_view text, const std::string& option, int min, int max);
+long long parseLong(std::string_view text, const std::string& option, long long min, long long max);
 double parseNumber(std::string_view text, const std::string& option, double min, double max);
 
 }  // namespace aor

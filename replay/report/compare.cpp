@@ -9,6 +9,7 @@
 #include "capture/input_error.h"
 #include "blocks/pass_names.h"
 #include "capture/json_input.h"
+#include "capture/plain_text.h"
 #include "report/compare_stats.h"
 #include "report/pipeline_time.h"
 
@@ -129,7 +130,7 @@ TimingSamples fromReport(const nlohmann::json& report, const fs::path& path) {
     const auto& raw = pass["gpu_ms"]["samples"];
     for (size_t k = 0; k < raw.size(); ++k) values.push_back(positiveNumber(raw[k], path, fmt::format("{}[{}]", field, k)));
     if (values.empty()) throw InputError(path.string(), std::nullopt, field, "is empty");
-    std::string name = pass["name"].get<std::string>();
+    std::string name = withoutControlCharacters(pass["name"].get<std::string>(), path.string(), fmt::format("passes[{}].name", i));
     // A pass listed twice would add its samples into the total twice.
     if (std::any_of(samples.begin(), samples.end(), [&](const auto& e) { return e.name == name; }))
       throw InputError(path.string(), std::nullopt, fmt::format("passes[{}].name", i),
@@ -174,7 +175,7 @@ TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
     if (memberOr<bool>(b, "error_occurred", false, path, prefix))
       throw InputError(path.string(), std::nullopt, prefix,
                        fmt::format("benchmark failed: {}", quoteForMessage(member("error_message", ""))));
-    std::string name = withoutRepetitionCount(member("run_name", member("name", "")));
+    std::string name = withoutControlCharacters(withoutRepetitionCount(member("run_name", member("name", ""))), path.string(), prefix + ".name");
     if (name.empty()) throw InputError(path.string(), std::nullopt, prefix + ".name", "missing");
     double scale = msPerUnit(member("time_unit", "ns"), path, prefix + ".time_unit");
     double value = positiveNumber(b.contains("real_time") ? b["real_time"] : nlohmann::json(), path, prefix + ".real_time") * scale;

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "capture/plain_text.h"
+
 namespace aor {
 namespace {
 
@@ -326,7 +328,8 @@ std::string svgPlot(const std::vector<PlotSeries>& series, const PlotOptions& op
   return svg;
 }
 
-std::string escapeXml(std::string_view text) {
+std::string escapeXml(std::string_view raw) {
+  const std::string text = printable(raw, true);  // XML 1.0 cannot hold other control characters at all
   std::string out;
   out.reserve(text.size());
   for (char c : text) {

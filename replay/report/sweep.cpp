@@ -53,6 +53,22 @@ std::string csvField(const std::string& text) {
   return quoted + "\"";
 }
 
+// The presets `t` runs: all of its own, or those of `request.presets` it has (others noted); "" for
+// a technique without presets (it runs once, with its defaults).
+std::vector<std::string> sweptPresets(const Technique& t, const SweepRequest& request, std::vector<std::string>& notes) {
+  if (t.presets.empty()) return {""};
+  std::vector<std::string> presets;
+  if (request.presets.empty()) {
+    for (const auto& p : t.presets) presets.push_back(p.name);
+    return presets;
+  }
+  for (const auto& p : request.presets) {
+    if (t.preset(p)) presets.push_back(p);
+    else notes.push_back(fmt::format("technique {} has no preset '{}' (presets: {}): skipped", t.name, p, t.presetList()));
+  }
+  return presets;
+}
+
 }  // namespace
 
 SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resolve) {
@@ -88,22 +104,24 @@ SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resol
   }
 
   SweepPlan plan;
+  std::vector<std::vector<std::string>> presetsOf;
+  double total = 0;  // a double: a hostile grid's product overflows any integer
   for (const Technique* t : techniques) {
+    presetsOf.push_back(sweptPresets(*t, request, plan.notes));
+    double count = double(presetsOf.back().size());
+    for (const auto& axis : axes) count *= t->parameter(axis.key) ? double(axis.values.size()) : 1.0;
+    total += count;
+  }
+  if (total > double(request.maxConfigurations))
+    throw InputError("", std::nullopt, "--grid",
+                     fmt::format("{:.0f} configurations are more than --max-configurations ({}); give a larger value to run them all",
+                                 total, request.maxConfigurations));
+  for (size_t ti = 0; ti < techniques.size(); ++ti) {
+    const Technique* t = techniques[ti];
     std::vector<std::string> own;  // the --set assignments this technique declares
     for (const auto& a : request.assignments)
       if (t->parameter(a.substr(0, a.find('=')))) own.push_back(a);
-    std::vector<std::string> presets;
-    if (t->presets.empty()) {
-      presets = {""};  // runs once, with its defaults
-    } else if (request.presets.empty()) {
-      for (const auto& p : t->presets) presets.push_back(p.name);
-    } else {
-      for (const auto& p : request.presets) {
-        if (t->preset(p)) presets.push_back(p);
-        else plan.notes.push_back(fmt::format("technique {} has no preset '{}' (presets: {}): skipped", t->name, p, t->presetList()));
-      }
-    }
-    for (const auto& preset : presets) {
+    for (const auto& preset : presetsOf[ti]) {
       std::string name = preset.empty() ? "" : preset;
       if (techniqueAxis) name += fmt::format("{}technique={}", name.empty() ? "" : " ", t->name);
       std::vector<SweepConfig> configs{{name, resolve(*t, preset, own)}};

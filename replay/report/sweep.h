@@ -18,11 +18,16 @@ struct SweepConfig {
   Settings settings;
 };
 
+// A grid past this many configurations (a run each) is refused unless --max-configurations allows
+// it: 10 values on each of 6 keys is 10^6 runs, about 10 hours on lavapipe.
+inline constexpr size_t kDefaultMaxConfigurations = 1000;
+
 struct SweepRequest {
   std::vector<std::string> presets;      // empty: every preset of each technique
   std::vector<std::string> grid;         // "KEY=v1,v2,...": a technique's key, or `technique`
   std::vector<std::string> assignments;  // --set KEY=VALUE, before the grid
   std::string defaultTechnique = "gtao"; // without a technique axis
+  size_t maxConfigurations = kDefaultMaxConfigurations;
 };
 struct SweepPlan {
   std::vector<SweepConfig> configs;
@@ -35,7 +40,8 @@ using SettingsResolver =
 // Each technique (the `technique` axis, else the default) runs each of its presets named in
 // `presets` (a preset it lacks is skipped with a note; a technique without presets runs once), times
 // the cartesian product of the other grid axes. A --set or grid key applies to every technique that
-// declares it and is an error only if none does. Throws InputError naming the bad axis or key.
+// declares it and is an error only if none does. Throws InputError naming the bad axis or key, or
+// when the plan has more than `maxConfigurations` configurations (counted before any is made).
 SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resolve);
 
 struct SweepRow {

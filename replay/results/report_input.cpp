@@ -5,6 +5,7 @@
 #include "capture/content_hash.h"
 #include "capture/input_error.h"
 #include "capture/json_input.h"
+#include "capture/plain_text.h"
 
 namespace aor::results {
 namespace fs = std::filesystem;
@@ -38,7 +39,7 @@ const nlohmann::json& member(const nlohmann::json& object, const std::string& pa
 std::string text(const nlohmann::json& object, const std::string& path, const fs::path& file) {
   const auto& value = member(object, path, file);
   if (!value.is_string()) throw InputError(file.string(), std::nullopt, path, "must be a string");
-  return value.get<std::string>();
+  return withoutControlCharacters(value.get<std::string>(), file.string(), path);
 }
 
 }  // namespace

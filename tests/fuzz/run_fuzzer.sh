@@ -2,7 +2,8 @@
 # Builds a JSON-reader fuzzer with clang (libFuzzer + ASan + UBSan) and runs it for a bounded time:
 #   tests/fuzz/run_fuzzer.sh [SECONDS=60] [BUILD_DIR=build-fuzz] [TARGET=capture_reader]
 # TARGET: capture_reader (capture.json + EXR), expectations (--expect), timing_json (compare's
-# report.json / Google Benchmark JSON). Inputs that crash are written to the target's regression
+# report.json / Google Benchmark JSON), technique_spec (a user technique's technique.json),
+# settings_file (--settings). Inputs that crash are written to the target's regression
 # folder (add them to git: the regular test suite replays it); the exit status is non-zero when the
 # fuzzer found one. Needs the Debian packages clang and libclang-rt-14-dev (libFuzzer's runtime).
 set -euo pipefail
@@ -15,7 +16,9 @@ case $target in
   capture_reader) corpus=$fuzz/corpus regression=$fuzz/regression dict=(-dict="$fuzz/capture.dict") ;;
   expectations) corpus=$fuzz/corpus-expectations regression=$fuzz/regression-expectations dict=(-dict="$fuzz/json.dict") ;;
   timing_json) corpus=$fuzz/corpus-timing regression=$fuzz/regression-timing dict=(-dict="$fuzz/json.dict") ;;
-  *) echo "unknown target $target (capture_reader, expectations, timing_json)" >&2; exit 2 ;;
+  technique_spec) corpus=$fuzz/corpus-technique regression=$fuzz/regression-technique dict=(-dict="$fuzz/technique.dict") ;;
+  settings_file) corpus=$fuzz/corpus-settings regression=$fuzz/regression-settings dict=(-dict="$fuzz/settings.dict") ;;
+  *) echo "unknown target $target (capture_reader, expectations, timing_json, technique_spec, settings_file)" >&2; exit 2 ;;
 esac
 mkdir -p "$build"
 # Several targets may be run at once (CTest -j): one configures and builds, the others wait.

@@ -270,7 +270,7 @@ TEST(BadInputCli, RepeatedKeysAndEmptyValuesAreRefused) {
       {"tune " + capture + " --range power=1:2:3", "--range\": 'power=1:2:3' is not KEY=MIN:MAX"},
       {"tune " + capture + " --range power=1:2 --range power=1:3", "--range\": key 'power' is given twice"},
       {"record " + report + " --db sqlite: --commit abc --ordinal 1", "--db\": names no file"},
-      {"record " + report + " --db " + (dir / "s.db").string() + " --commit '' --ordinal 1", "--commit\": is empty"}};
+      {"record " + report + " --db " + (dir / "s.db").string() + " --commit '' --ordinal 1", "--commit: is empty"}};
   for (const auto& [arguments, says] : cases) {
     const auto r = runAoreplay(arguments);
     EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.output;
@@ -292,6 +292,76 @@ TEST(BadInputCli, AnotherProgramsSqliteFileIsNotTakenAsAStore) {
   const fs::path tables = dir / "tables.txt";
   ASSERT_EQ(std::system(fmt::format("sqlite3 {} .tables > {}", db.string(), tables.string()).c_str()), 0);
   EXPECT_EQ(readText(tables), "notes\n") << "no table of the store was added";
+}
+
+// Issue 44, class 8: one rule for control characters (capture/plain_text.h). Every command-line
+// value, technique.json's strings and report.json's names refuse them where they come in, so a
+// commit string cannot recolour the terminal and a parameter's doc cannot add a line to the
+// generated GLSL; an empty value (`--out ''` once wrote into out/) is refused the same way.
+TEST(BadInputCli, ControlCharactersAndEmptyValuesAreRefusedWhereTheyComeIn) {
+  const fs::path dir = scratchDir("control-characters");
+  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  const std::string report = oneFrameReport(dir);
+  json named = json::parse(readText(report));
+  named["passes"][0]["name"] = std::string("gtao\x01");
+  writeText(dir / "named.json", named.dump());
+  const fs::path technique = dir / "technique";
+  fs::create_directories(technique);
+  writeText(technique / "technique.json", R"({"format": "aoreplay-technique", "version": 1, "name": "doc",
+    "parameters": {"k": {"type": "float", "default": 1, "min": 0, "max": 2, "doc": "a doc\n#define k 0.0"}},
+    "passes": [{"name": "shade", "shader": "shade.comp", "writes": [{"name": "ao", "format": "r16f"}]}], "output": "ao"})");
+  writeText(technique / "shade.comp", "#version 450\n#include \"aoreplay.glsl\"\nvoid main() {}\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run " + capture + " --out ''", "--out: is empty"},
+      {"run " + capture + " --out \"$(printf 'a\\nb')\"", "--out: a\\x0ab holds a control character (\\x0a at byte 1)"},
+      {"record " + report + " --db " + (dir / "s.db").string() + " --commit \"$(printf 'abc\\033[31m')\" --ordinal 1", "--commit: abc\\x1b[31m holds a control character"},
+      {"compare " + report + " " + (dir / "named.json").string(), "field \"passes[0].name\": \"gtao\\u0001\" holds a control character"},
+      {"technique-header " + (technique / "technique.json").string() + " shade", "field \"parameters.k.doc\": \"a doc\\n#define k 0.0\" holds a control character"}};
+  for (const auto& [arguments, says] : cases) {
+    const auto r = runAoreplay(arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << arguments << "\n" << r.output;
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << "no control character reaches the terminal: " << arguments;
+  }
+  EXPECT_FALSE(fs::exists(dir / "s.db"));
+}
+
+// Issue 44, class 7: a sweep's size is counted before any configuration is made; past
+// --max-configurations (default 1000) it is refused at once. A 4 x 10^6 grid ran for hours before.
+TEST(BadInputCli, ASweepGridPastMaxConfigurationsIsRefusedBeforeAnyWork) {
+  const std::string capture = (fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit").string();
+  const fs::path out = scratchDir("huge-grid") / "out";
+  std::string grid;
+  for (const char* key : {"slices", "steps", "radius", "power", "falloff", "thin"})
+    grid += fmt::format(" --grid {}=1,2,3,4,5,6,7,8,9,10", key);
+  auto r = runAoreplay(fmt::format("sweep {}{} --out {}", capture, grid, out.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("\"--grid\": 4000000 configurations are more than --max-configurations (1000)"), std::string::npos) << r.output;
+  r = runAoreplay(fmt::format("sweep {} --grid slices=1,2 --max-configurations 7 --out {}", capture, out.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("8 configurations are more than --max-configurations (7)"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Issue 44, class 9: a commit's position is stored as seconds and printed by every export as an ISO
+// date; one past 9999-12-31 (or an ordinal past int64, once clamped) is refused when recorded, and
+// the last printable second is stored and exported.
+TEST(BadInputCli, CommitPositionsEveryExportCannotPrintAreRefusedWhenRecorded) {
+  const fs::path dir = scratchDir("positions");
+  const std::string report = oneFrameReport(dir);
+  const std::string db = (dir / "s.db").string();
+  for (const std::string& position : {"--ordinal 253402300800", "--ordinal 99999999999999999999", "--ordinal -1",
+                                      "--date @253402300800", "--date @-99999999999999999999", "--date 0000-12-31"}) {
+    auto r = runAoreplay(fmt::format("record {} --db {} --commit abc {}", report, db, position));
+    EXPECT_EQ(r.exitCode, 2) << position << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(db)) << position;
+  }
+  ASSERT_EQ(runAoreplay(fmt::format("record {} --db {} --commit abc --ordinal 253402300799", report, db)).exitCode, 0);
+  for (const char* format : {"google-benchmark", "bencher", "otava"}) {
+    auto r = runAoreplay(fmt::format("export --db {} --format {}", db, format));
+    EXPECT_EQ(r.exitCode, 0) << format << "\n" << r.output;
+  }
+  EXPECT_NE(runAoreplay(fmt::format("export --db {} --format otava", db)).output.find("9999-12-31T23:59:59Z"), std::string::npos);
 }
 
 }  // namespace

@@ -42,6 +42,17 @@ TEST(Junit, OneCasePerThresholdAndOneFailureNamingMetricAndFrames) {
   EXPECT_NE(xml.find("temporal.warping_error at frame 7: 0.0042 &gt; max 0.002</failure>"), std::string::npos) << xml;
 }
 
+// Issue 44, class 8: XML 1.0 cannot hold most control characters even as entities; names that
+// carry them (from any input) are written escaped, so the file stays valid XML.
+TEST(Junit, ControlCharactersInNamesAreEscapedAndTheXmlStaysValid) {
+  std::string xml = junitXml("suite\x1b[31m", {{"class\x01", "name\x0b", std::string("fails\x02\nsecond line"), false, "detail\x7f"}});
+  for (unsigned char c : xml) EXPECT_TRUE(c >= 0x20 ? c != 0x7f : c == '\n') << "raw control character " << int(c);
+  EXPECT_NE(xml.find(R"(<testsuite name="suite\x1b[31m")"), std::string::npos) << xml;
+  EXPECT_NE(xml.find(R"(classname="class\x01" name="name\x0b")"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("fails\\x02\nsecond line</failure>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("detail\\x7f"), std::string::npos) << xml;
+}
+
 TEST(SvgPlot, LabelsOfCrowdedPointsDoNotOverlap) {
   PlotSeries s{"configurations"};
   s.lines = false;

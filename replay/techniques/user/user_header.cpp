@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "capture/plain_text.h"
+
 namespace aor {
 namespace {
 
@@ -43,7 +45,7 @@ std::vector<UserBinding> userPassBindings(const UserTechniqueSpec& spec, const U
 
 std::string userPassHeader(const UserTechniqueSpec& spec, const UserPass& pass) {
   std::string h;
-  h += fmt::format("// aoreplay.glsl: generated for pass '{}' of technique '{}' ({}).\n", pass.name, spec.name, spec.display);
+  h += fmt::format("// aoreplay.glsl: generated for pass '{}' of technique '{}' ({}).\n", pass.name, spec.name, printable(spec.display));
   h += "// `aoreplay technique-header FILE.json PASS` prints it; techniques/FORMAT.md documents it.\n";
   h += "#ifndef AOREPLAY_GLSL\n#define AOREPLAY_GLSL\n\n";
   h += fmt::format("// One invocation per pixel of '{}' ({} scale), in whole workgroups: return where\n", pass.writes[0].name,

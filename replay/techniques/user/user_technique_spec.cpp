@@ -13,6 +13,7 @@
 #include "blocks/blocks.h"
 #include "capture/input_error.h"
 #include "capture/json_input.h"
+#include "capture/plain_text.h"
 #include "vk/device_limits.h"
 
 namespace aor {
@@ -87,7 +88,8 @@ struct Checker {
   }
   std::string string(const ordered& v, const std::string& field) const {
     if (!v.is_string()) fail(field, "expected a string, got " + describe(v));
-    return v.get<std::string>();
+    // A doc becomes a comment line of the generated GLSL header: a newline there would be code.
+    return withoutControlCharacters(v.get<std::string>(), file, field);
   }
   double number(const ordered& v, const std::string& field) const {
     if (!v.is_number()) fail(field, "expected a number, got " + describe(v));
