@@ -1,6 +1,7 @@
 #include "results/sqlite_database.h"
 
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <sqlite3.h>
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
@@ -42,7 +43,12 @@ class SqliteDatabase final : public Database {
       SqliteRow row(statement);
       while (statement.executeStep()) onRow(row);
     } catch (const SQLite::Exception& e) {
-      throw StoreError(fmt::format("{}: {} (in: {})", displayName(), e.what(), sql.substr(0, 80)));
+      // Damage found only when a page is read (the header and schema were fine at open) is the
+      // file's fault, not the tool's: bad input, said plainly.
+      if (e.getErrorCode() == SQLITE_CORRUPT || e.getErrorCode() == SQLITE_NOTADB)
+        throw InputError(displayName(), std::nullopt, "--db",
+                         fmt::format("the store is damaged ({}); restore it from a copy, or record into a new file", e.what()));
+      throw StoreError(fmt::format("{}: {}", displayName(), e.what()));
     }
   }
   void beginWrite(bool) override { execute("BEGIN IMMEDIATE"); }  // the write lock now, or wait for it

@@ -364,5 +364,25 @@ TEST(BadInputCli, CommitPositionsEveryExportCannotPrintAreRefusedWhenRecorded) {
   EXPECT_NE(runAoreplay(fmt::format("export --db {} --format otava", db)).output.find("9999-12-31T23:59:59Z"), std::string::npos);
 }
 
+// Issue 44, class 9: a store damaged past its first page opens fine and fails at the first read;
+// that is exit 2 with a plain message (it was exit 1 with the SQL statement that hit the damage).
+TEST(BadInputCli, ADamagedStoreIsBadInputSaidPlainly) {
+  const fs::path dir = scratchDir("damaged-store");
+  const std::string report = oneFrameReport(dir);
+  const fs::path db = dir / "s.db";
+  ASSERT_EQ(runAoreplay(fmt::format("record {} --db {} --commit abc --ordinal 1", report, db.string())).exitCode, 0);
+  std::string bytes = readText(db);
+  ASSERT_GT(bytes.size(), 8192u);
+  for (size_t i = 4096; i < bytes.size(); i += 3) bytes[i] = char(bytes[i] ^ 0xa5);  // every page but the schema's
+  writeText(db, bytes);
+  for (const std::string& command : {"trend --db " + db.string(), "export --format otava --db " + db.string(),
+                                     fmt::format("record {} --db {} --commit def --ordinal 2", report, db.string())}) {
+    const auto r = runAoreplay(command);
+    EXPECT_EQ(r.exitCode, 2) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("field \"--db\": the store is damaged (database disk image is malformed)"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("SELECT"), std::string::npos) << r.output;
+  }
+}
+
 }  // namespace
 }  // namespace aor::test

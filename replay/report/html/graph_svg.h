@@ -15,4 +15,9 @@ inline constexpr size_t kMaxDrawnPasses = 32;
 std::string graphSvg(const std::string& dot);
 size_t passNodes(const std::string& dot);  // the pass nodes (p0, p1, ...) of graph::toDot's text
 
+// The simpler drawing for graphs of any size, in time linear in the graph: the passes one per row
+// in execution order (culled ones grey), and each resource as arcs on the right from the pass
+// that writes it to each pass that reads it (its name as the arc's tooltip).
+std::string passListSvg(const std::string& dot);
+
 }  // namespace aor::html

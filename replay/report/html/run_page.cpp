@@ -141,13 +141,17 @@ std::string graphHtml(std::string dot) {
   if (auto lr = dot.find("rankdir=LR"); lr != std::string::npos) dot.replace(lr, 10, "rankdir=TB");
   std::string svg = graphSvg(dot);
   if (!svg.empty()) return "<div class=\"graph\">" + svg + "</div>\n<p class=\"note\">Dashed grey: culled passes.</p>\n";
-  std::string note;
-  if (const size_t passes = passNodes(dot); passes > kMaxDrawnPasses)
-    note = fmt::format("<p class=\"note\">{} passes: more than the {} this page lays out (Graphviz's layout time grows "
-                       "explosively with long chains); the graph's DOT text follows, `aoreplay graph --dot FILE` writes "
-                       "it for Graphviz.</p>\n",
-                       passes, kMaxDrawnPasses);
-  return note + "<pre class=\"graph\">" + escape(dot.empty() ? "(no graph recorded)" : dot) + "</pre>\n";
+  if (dot.empty()) return "<p class=\"note\">(no graph recorded)</p>\n";
+  const size_t passes = passNodes(dot);
+  if (passes <= kMaxDrawnPasses)  // Graphviz could not lay it out
+    return "<pre class=\"graph\">" + escape(dot) + "</pre>\n";
+  return fmt::format("<p class=\"note\">{} passes: more than the {} Graphviz lays out here (its layout time grows "
+                     "explosively with long chains), so drawn as a list in execution order, dashed grey when culled; each "
+                     "arc is a resource (hover for its name) from the pass that writes it to a pass that reads it. "
+                     "<code>aoreplay graph --dot FILE</code> writes the DOT text for Graphviz.</p>\n",
+                     passes, kMaxDrawnPasses) +
+         "<div class=\"graph\">" + passListSvg(dot) + "</div>\n<details><summary>DOT text</summary><pre class=\"graph\">" +
+         escape(dot) + "</pre></details>\n";
 }
 
 std::string bytesText(double bytes) {

@@ -71,7 +71,7 @@ struct Checker {
   // Every key of `object` must be one of `allowed`.
   void keysOnly(const ordered& object, const std::string& where, std::initializer_list<const char*> allowed) const {
     for (const auto& [key, value] : object.items()) {
-      if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
+      if (std::none_of(allowed.begin(), allowed.end(), [&key = key](const char* a) { return key == a; })) {
         std::vector<std::string> names(allowed.begin(), allowed.end());
         fail(where.empty() ? key : where + "." + key,
              fmt::format("unknown key {} (the keys here are {})", quoteForMessage(key), fmt::join(names, ", ")));
@@ -218,7 +218,7 @@ std::vector<Preset> parsePresets(const Checker& c, const ordered& v, const std::
     c.object(values, field);
     Preset preset{name, {}};
     for (const auto& [key, value] : values.items()) {
-      auto p = std::find_if(params.begin(), params.end(), [&](const Parameter& q) { return q.key == key; });
+      auto p = std::find_if(params.begin(), params.end(), [&key = key](const Parameter& q) { return q.key == key; });
       if (p == params.end()) {
         std::vector<std::string> keys;
         for (const auto& q : params) keys.push_back(q.key);
