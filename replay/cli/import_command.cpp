@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "capture/input_error.h"
 #include "cli/number_options.h"
 #include "import/renderdoc_import.h"
 
@@ -21,6 +22,9 @@ struct ImportArgs {
 
 int importCommand(ImportArgs& args) {
   RenderDocImportOptions& o = args.options;
+  if (o.viewProjection.empty() && (o.view.empty() || o.projection.empty()))
+    throw InputError("", std::nullopt, o.view.empty() ? "--view" : "--projection",
+                     "the camera is --view BLOCK.member with --projection BLOCK.member, or --view-projection BLOCK.member");
   o.files.assign(args.files.begin(), args.files.end());
   if (!args.framesFromDir.empty()) o.framesFromDir = args.framesFromDir;
   o.out = args.out;
@@ -50,8 +54,15 @@ void registerImportCommand(CLI::App& app) {
   rd->add_option("--normals-space", o.normalsSpace, "world | view: the space the normal target holds")
       ->check(CLI::IsMember({"world", "view"}))
       ->capture_default_str();
-  rd->add_option("--view", o.view, "world -> view matrix: BLOCK.member of a uniform block")->required();
-  rd->add_option("--projection", o.projection, "view -> clip matrix: BLOCK.member of a uniform block")->required();
+  auto* view = rd->add_option("--view", o.view,
+                              "world -> view matrix: BLOCK.member of a uniform or push-constant block, or BLOCK.member[I] "
+                              "(four vec4 elements from I)");
+  auto* projection = rd->add_option("--projection", o.projection, "view -> clip matrix, named as --view");
+  auto* combined = rd->add_option("--view-projection", o.viewProjection,
+                                  "instead of --view and --projection: their product (P.V, or P.V.M with a rigid model), "
+                                  "factored exactly into a perspective projection and a rigid view");
+  combined->excludes(view)->excludes(projection);
+  rd->add_flag("--array-rows", o.arrayRows, "BLOCK.member[I]: the four elements are the matrix's rows (default: its columns)");
   rd->add_option("--frames-from-dir", args->framesFromDir, "every .rdc in this folder, one frame each");
   rd->add_flag("--no-self-check", o.noSelfCheck,
               "import without checking the frame against the draw's own vertices (capture.json records it)");

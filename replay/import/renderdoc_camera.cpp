@@ -1,5 +1,6 @@
 #include "import/renderdoc_camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -13,7 +14,9 @@ namespace {
 
 constexpr const char* kSeparateMatrices =
     "the import needs the world -> view matrix (--view) and the view -> clip projection (--projection) as separate "
-    "members; a combined view-projection or model-view-projection matrix is not supported";
+    "members, or a combined view-projection matrix as --view-projection";
+// Axes further from perpendicular than this are a shear or a non-uniform scale, not a rotation.
+constexpr double kMaxSkewDegrees = 0.01;
 
 std::string lastRow(const glm::mat4& m) {
   return fmt::format("({:g}, {:g}, {:g}, {:g})", m[0][3], m[1][3], m[2][3], m[3][3]);
@@ -27,6 +30,70 @@ void requireFinite(const glm::mat4& m, const std::string& name, const char* fiel
 }
 
 }  // namespace
+
+FactoredViewProjection factorViewProjection(const glm::mat4& combined, const std::string& name) {
+  requireFinite(combined, name, "--view-projection");
+  const glm::dmat4 m(combined);
+  double largest = 0;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) largest = std::max(largest, std::abs(m[c][r]));
+  auto row = [&](int r) { return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+  // Clip w = -z_view: the last row is minus the view's z row, whose rotation part is a unit vector.
+  const double lambda = glm::length(glm::dvec3(row(3)));
+  if (!(lambda > 1e-6 * largest))
+    throw ImportProblem("--view-projection", fmt::format("{} has no perspective: its last row is {}, so clip w does not "
+                                                         "depend on the position (an orthographic projection); only "
+                                                         "perspective projections are supported",
+                                                         name, lastRow(combined)));
+  const glm::dvec4 r0 = row(0) / lambda, r1 = row(1) / lambda, r2 = row(2) / lambda, r3 = row(3) / lambda;
+  const glm::dvec3 z = -glm::dvec3(r3);
+  const double tz = -r3.w;
+  // Rows 0 and 1 are P[0][0] x + P[2][0] z and P[1][1] y + P[2][1] z (plus translations).
+  const double offsetX = glm::dot(glm::dvec3(r0), z), offsetY = glm::dot(glm::dvec3(r1), z);
+  glm::dvec3 x = glm::dvec3(r0) - offsetX * z, y = glm::dvec3(r1) - offsetY * z;
+  const double sx = glm::length(x);
+  double sy = glm::length(y);
+  if (!(sx > 0 && sy > 0))
+    throw ImportProblem("--view-projection", fmt::format("{} is singular: it maps every point to one screen line", name));
+  x /= sx;
+  y /= sy;
+  if (glm::dot(glm::cross(x, y), z) < 0) {  // a proper rotation; the y flip goes into the projection
+    y = -y;
+    sy = -sy;
+  }
+  FactoredViewProjection f;
+  f.skewDegrees = 90.0 - glm::degrees(std::acos(std::min(1.0, std::abs(glm::dot(x, y)))));
+  if (f.skewDegrees > kMaxSkewDegrees)
+    throw ImportProblem("--view-projection", fmt::format("{} is not a perspective projection times a rigid view: the "
+                                                         "view's x and y axes are {:.3g} degrees from perpendicular (a "
+                                                         "shear or a non-uniform scale folded in, e.g. a model matrix "
+                                                         "that scales); at most {:g} degrees",
+                                                         name, f.skewDegrees, kMaxSkewDegrees));
+  const double tx = (r0.w - offsetX * tz) / sx, ty = (r1.w - offsetY * tz) / sy;
+  const double depthScale = glm::dot(glm::dvec3(r2), z), depthOffset = r2.w - depthScale * tz;
+  glm::dmat4 view(1.0), projection(0.0);
+  for (int i = 0; i < 3; ++i) {
+    view[i][0] = x[i];
+    view[i][1] = y[i];
+    view[i][2] = z[i];
+  }
+  view[3] = glm::dvec4(tx, ty, tz, 1.0);
+  projection[0][0] = sx;
+  projection[1][1] = sy;
+  projection[2] = glm::dvec4(offsetX, offsetY, depthScale, -1.0);
+  projection[3][2] = depthOffset;
+  const glm::dmat4 product = projection * view;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) f.residual = std::max(f.residual, std::abs(product[c][r] - m[c][r] / lambda) * lambda / largest);
+  if (f.residual > kMaxFactoringResidual)
+    throw ImportProblem("--view-projection", fmt::format("{} is not a perspective projection times a rigid view: the "
+                                                         "closest such product differs by {:.3g} of its largest entry "
+                                                         "(at most {:g})",
+                                                         name, f.residual, kMaxFactoringResidual));
+  f.view = glm::mat4(view);
+  f.projection = glm::mat4(projection);
+  return f;
+}
 
 glm::mat4 matrixFromRows(const std::array<float, 16>& rows) {
   glm::mat4 m;

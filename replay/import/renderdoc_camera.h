@@ -18,6 +18,20 @@ glm::mat4 matrixFromRows(const std::array<float, 16>& rows);
 void checkViewMatrix(const glm::mat4& view, const std::string& name);
 void checkProjectionMatrix(const glm::mat4& projection, const std::string& name);  // left-handed allowed
 
+// A combined view-projection matrix (P.V, or P.V.M with a rigid model M folded in) split into a
+// right-handed perspective projection (clip w = -z_view, P[2][3] = -1) and a rigid world -> view
+// transform (a rotation with determinant +1 and a translation), exactly up to rounding. A uniform
+// scale folded in cannot be told apart from the projection's near and far planes; a shear or
+// non-uniform scale, an orthographic matrix, or a residual above kMaxFactoringResidual throws
+// ImportProblem (field --view-projection) naming what it found.
+inline constexpr double kMaxFactoringResidual = 1e-5;  // of the matrix's largest entry
+struct FactoredViewProjection {
+  glm::mat4 view{1.0f}, projection{1.0f};
+  double residual = 0;  // largest |P.V - M| over M's largest entry (M scaled so clip w = -z_view)
+  double skewDegrees = 0;  // how far the view's x and y axes are from perpendicular
+};
+FactoredViewProjection factorViewProjection(const glm::mat4& combined, const std::string& name);
+
 // The pixels of the depth target the draw's viewport covers (the capture is cropped to them).
 struct ViewportRect {
   int x = 0, y = 0, width = 0, height = 0;

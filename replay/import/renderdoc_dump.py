@@ -44,8 +44,10 @@ def parse_arguments():
     p.add_argument("--pass", dest="pass_name")
     p.add_argument("--depth", default="auto")
     p.add_argument("--normals", default="none")
-    p.add_argument("--view", required=True)
-    p.add_argument("--projection", required=True)
+    p.add_argument("--view")
+    p.add_argument("--projection")
+    p.add_argument("--view-projection", dest="view_projection")
+    p.add_argument("--array-rows", action="store_true")
     p.add_argument("--no-self-check", action="store_true")
     return p.parse_args()
 
@@ -268,6 +270,54 @@ def type_text(var_type):
     return var_type.name + ("[%d]" % var_type.elements if var_type.elements > 1 else "")
 
 
+def var_type_name(rd, value):
+    """A VarType by its name (the Python module gives some enums as plain integers)."""
+    name = getattr(value, "name", None)
+    if isinstance(name, str):
+        return name
+    for candidate in dir(rd.VarType):
+        if not candidate.startswith("_") and getattr(rd.VarType, candidate) == value:
+            return candidate
+    return "type %s" % value
+
+
+def variable_text(rd, variable):
+    """What a variable read from a block is, in words: '4 x 4 Float', 'an array of 7 (1 x 4 Float)'."""
+    if variable.members:
+        first = variable.members[0]
+        if first.name.endswith("]"):
+            return "an array of %d (%s)" % (len(variable.members), variable_text(rd, first))
+        return "a struct of %d members" % len(variable.members)
+    return "%d x %d %s" % (variable.rows, variable.columns, var_type_name(rd, variable.type))
+
+
+def split_index(piece):
+    """'child[4]' -> ('child', 4); 'view' -> ('view', None)."""
+    if piece.endswith("]") and "[" in piece:
+        name, index = piece[:-1].split("[", 1)
+        if name and index.isdigit():
+            return name, int(index)
+        raise ImportFailure(None, "%r: an element is NAME[I] with I a whole number" % piece)
+    return piece, None
+
+
+def matrix_from_elements(rd, variable, first, as_rows, spec, field):
+    """Four consecutive vec4 elements of an array member, from `first`, as the matrix's columns or rows."""
+    elements = variable.members
+    if not elements or not elements[0].name.endswith("]"):
+        raise ImportFailure(field, "%s is %s, not an array of vec4: [I] picks four elements of an array"
+                            % (spec, variable_text(rd, variable)))
+    if first + 4 > len(elements):
+        raise ImportFailure(field, "%s: elements %d..%d are past the end of the array (%d elements)"
+                            % (spec, first, first + 3, len(elements)))
+    picked = elements[first:first + 4]
+    for element in picked:
+        if element.members or element.rows * element.columns != 4 or element.type != rd.VarType.Float:
+            raise ImportFailure(field, "%s: element %s is %s, not a float vec4" % (spec, element.name, variable_text(rd, element)))
+    values = [[float(x) for x in e.value.f32v[:4]] for e in picked]
+    return [values[r][c] if as_rows else values[c][r] for r in range(4) for c in range(4)]
+
+
 def find_member(variables, path):
     """The reflected variable and its contents at a '.'-separated path inside a block."""
     found = None
@@ -280,13 +330,20 @@ def find_member(variables, path):
     return found
 
 
-def read_matrix(frame, spec, field):
-    """The 4x4 matrix BLOCK.member of the event's shaders: values row by row, as RenderDoc gives them."""
+def read_matrix(frame, spec, field, array_rows):
+    """The 4x4 matrix BLOCK.member (or the four vec4 elements BLOCK.member[I]) of the event's shaders,
+    in a uniform or push-constant block: values row by row, as RenderDoc gives them."""
     rd = frame.rd
     pieces = spec.split(".")
     if len(pieces) < 2 or not all(pieces):
-        raise ImportFailure(field, "%r is not BLOCK.member (the uniform block's instance name, a dot, the member)" % spec)
+        raise ImportFailure(field, "%r is not BLOCK.member or BLOCK.member[I] (the block's instance name, a dot, the "
+                            "member)" % spec)
     block_name, member_path = pieces[0], pieces[1:]
+    try:
+        last, first = split_index(member_path[-1])
+    except ImportFailure as e:
+        raise ImportFailure(field, str(e))
+    member_path = member_path[:-1] + [last]
     state = frame.controller.GetPipelineState()
     for stage_key in SHADER_STAGES:
         stage = getattr(rd.ShaderStage, stage_key)
@@ -296,31 +353,40 @@ def read_matrix(frame, spec, field):
         for storage in list(reflection.readWriteResources) + list(reflection.readOnlyResources):
             if storage.name == block_name and not storage.isTexture:
                 raise ImportFailure(field, "%s is a storage buffer of the %s shader: matrices in storage buffers are "
-                                    "not supported yet (only uniform blocks)" % (block_name, stage_name(stage_key)))
+                                    "not supported yet (only uniform and push-constant blocks)"
+                                    % (block_name, stage_name(stage_key)))
         for index, block in enumerate(reflection.constantBlocks):
             members = ", ".join("%s (%s)" % (v.name, type_text(v.type)) for v in block.variables)
             if block.name != block_name:
                 continue
-            if not block.bufferBacked:
-                raise ImportFailure(field, "%s is a push-constant block of the %s shader: matrices in push constants "
-                                    "are not supported yet (only uniform blocks)" % (block_name, stage_name(stage_key)))
-            bound = state.GetConstantBuffer(stage, index, 0)
+            if block.bufferBacked:
+                bound = state.GetConstantBuffer(stage, index, 0)
+                buffer_id, offset, size = bound.resourceId, bound.byteOffset, bound.byteSize
+            else:  # push constants: RenderDoc reads them from the recorded state
+                buffer_id, offset, size = rd.ResourceId.Null(), 0, 0
             contents = frame.controller.GetCBufferVariableContents(
                 state.GetGraphicsPipelineObject(), reflection.resourceId, stage, state.GetShaderEntryPoint(stage),
-                index, bound.resourceId, bound.byteOffset, bound.byteSize)
+                index, buffer_id, offset, size)
             variable = find_member(contents, member_path)
+            kind = "uniform block" if block.bufferBacked else "push-constant block"
             if variable is None:
-                raise ImportFailure(field, "uniform block %s (%s shader) has no member %s; its members: %s"
-                                    % (block_name, stage_name(stage_key), ".".join(member_path), members))
-            if variable.rows != 4 or variable.columns != 4 or variable.type != rd.VarType.Float:
-                raise ImportFailure(field, "%s is %d x %d %s, not a 4 x 4 float matrix"
-                                    % (spec, variable.rows, variable.columns, str(variable.type).split(".")[-1]))
-            return {
-                "block": block_name, "member": ".".join(member_path), "stage": stage_name(stage_key),
-                "declared_row_major": bool(variable.RowMajor()), "buffer": frame.name_of(bound.resourceId),
-                "rows": [float(x) for x in variable.value.f32v[:16]],
-            }
-    raise ImportFailure(field, "no uniform block %s in the shaders at event %s; the blocks there: %s"
+                raise ImportFailure(field, "%s %s (%s shader) has no member %s; its members: %s"
+                                    % (kind, block_name, stage_name(stage_key), ".".join(member_path), members))
+            found = {"block": block_name, "member": ".".join(pieces[1:]), "stage": stage_name(stage_key),
+                     "push_constant": not block.bufferBacked,
+                     "buffer": frame.name_of(buffer_id) if block.bufferBacked else "push constants"}
+            if first is not None:
+                found["rows"] = matrix_from_elements(rd, variable, first, array_rows, spec, field)
+                found["declared_row_major"] = False
+                found["array_read_as"] = "rows" if array_rows else "columns"
+                return found
+            if variable.members or variable.rows != 4 or variable.columns != 4 or variable.type != rd.VarType.Float:
+                hint = " (BLOCK.member[I] reads four of its vec4 elements)" if variable.members else ""
+                raise ImportFailure(field, "%s is %s, not a 4 x 4 float matrix%s" % (spec, variable_text(rd, variable), hint))
+            found["declared_row_major"] = bool(variable.RowMajor())
+            found["rows"] = [float(x) for x in variable.value.f32v[:16]]
+            return found
+    raise ImportFailure(field, "no uniform or push-constant block %s in the shaders at event %s; the blocks there: %s"
                         % (block_name, frame.current, block_listing(frame)))
 
 
@@ -475,8 +541,11 @@ def dump(args, result):
             raise ImportFailure("--depth", "at event %s the depth target is %s, not %s"
                                 % (frame.current, result["depth"]["resource"], args.depth))
         result["normals"] = dump_normals(frame, args, args.out)
-        result["view"] = read_matrix(frame, args.view, "--view")
-        result["projection"] = read_matrix(frame, args.projection, "--projection")
+        if args.view_projection:
+            result["view_projection"] = read_matrix(frame, args.view_projection, "--view-projection", args.array_rows)
+        else:
+            result["view"] = read_matrix(frame, args.view, "--view", args.array_rows)
+            result["projection"] = read_matrix(frame, args.projection, "--projection", args.array_rows)
         started = time.monotonic()
         result["self_check"] = check_impossible("--no-self-check") if args.no_self_check else \
             dump_post_vs(frame, action, args.out)

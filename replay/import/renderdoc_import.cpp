@@ -62,6 +62,7 @@ struct FrameFacts {
   ViewportRect rect;
   double depthQuantum = 0.0;
   glm::mat4 appProjection{1.0f};
+  glm::mat4 appView{1.0f};  // the application's world -> view (factored when combined)
 };
 
 // The captured API's conventions, as the dump script read them from the draw's state.
@@ -126,9 +127,14 @@ std::string resourceText(const json& entry) {
                      entry.at("height").get<int>());
 }
 
+std::string matrixName(const json& m) { return m.at("block").get<std::string>() + "." + m.at("member").get<std::string>(); }
+
 std::string matrixText(const json& m) {
-  return fmt::format("{}.{} ({} shader, {})", m.at("block").get<std::string>(), m.at("member").get<std::string>(),
-                     m.at("stage").get<std::string>(), m.at("declared_row_major").get<bool>() ? "row-major" : "column-major");
+  const std::string layout = m.contains("array_read_as") ? "four vec4 read as " + m["array_read_as"].get<std::string>()
+                             : m.at("declared_row_major").get<bool>() ? "row-major"
+                                                                      : "column-major";
+  return fmt::format("{} ({} shader, {}{})", matrixName(m), m.at("stage").get<std::string>(), layout,
+                     m.at("push_constant").get<bool>() ? ", push constants" : "");
 }
 
 glm::mat4 matrixOf(const json& m) {
@@ -202,30 +208,45 @@ bool captureTopIsClipYUp(const FrameFacts& f) {
   return (f.applied.clipOriginUpperLeft ? -ndc : ndc) > 0.0;
 }
 
-ImportedCamera importMatrices(const json& dump, FrameFacts& facts, json& scene, std::FILE* log) {
+// The application's view and projection: read apart, or factored from the one combined matrix.
+std::pair<glm::mat4, glm::mat4> appMatrices(const json& dump, json& scene, std::FILE* log) {
+  if (dump.contains("view_projection")) {
+    const json& vp = dump.at("view_projection");
+    const FactoredViewProjection f = factorViewProjection(matrixOf(vp), matrixName(vp));
+    fmt::print(log, "  view-projection: {}: factored into a perspective projection and a rigid view (residual {:.2g}, "
+                    "axes {:.2g} degrees from perpendicular); a rigid model folded into it makes world the object's frame\n",
+               matrixText(vp), f.residual, f.skewDegrees);
+    scene["view_projection"] = matrixText(vp);
+    scene["factoring"] = {{"residual", f.residual}, {"skew_degrees", f.skewDegrees}};
+    return {f.view, f.projection};
+  }
   const json& v = dump.at("view");
   const json& p = dump.at("projection");
-  const std::string viewName = v.at("block").get<std::string>() + "." + v.at("member").get<std::string>();
-  const std::string projectionName = p.at("block").get<std::string>() + "." + p.at("member").get<std::string>();
+  const std::string viewName = matrixName(v), projectionName = matrixName(p);
   if (viewName == projectionName)
-    throw ImportProblem("--projection", fmt::format("--view and --projection both name {}: a combined matrix is not "
-                                                    "supported; the import needs the world -> view matrix and the "
-                                                    "view -> clip projection as separate members, and the blocks at "
-                                                    "this event hold: {}",
-                                                    viewName, dump.at("blocks").get<std::string>()));
+    throw ImportProblem("--projection", fmt::format("--view and --projection both name {}: a combined matrix is "
+                                                    "given as --view-projection {} (it is factored into the two); the "
+                                                    "blocks at this event hold: {}",
+                                                    viewName, viewName, dump.at("blocks").get<std::string>()));
   const glm::mat4 view = matrixOf(v), projection = matrixOf(p);
   checkProjectionMatrix(projection, projectionName);
   checkViewMatrix(view, viewName);
+  fmt::print(log, "  view: {}\n  projection: {}\n", matrixText(v), matrixText(p));
+  scene["view"] = matrixText(v);
+  scene["projection"] = matrixText(p);
+  return {view, projection};
+}
+
+ImportedCamera importMatrices(const json& dump, FrameFacts& facts, json& scene, std::FILE* log) {
+  const auto [view, projection] = appMatrices(dump, scene, log);
   facts.appProjection = projection;
+  facts.appView = view;
   ImportedCamera camera =
       importCamera(view, projectionToZeroToOne(facts.applied, projection), captureTopIsClipYUp(facts));
   if (facts.applied.clipZMinusOneToOne)
     camera.adjustments.insert(camera.adjustments.begin(), "clip z in [-1, 1]: projection's depth row mapped to [0, 1]");
-  fmt::print(log, "  view: {}\n  projection: {}: {}\n", matrixText(v), matrixText(p),
-             describeProjection(camera.projection));
+  fmt::print(log, "  camera: {}\n", describeProjection(camera.projection));
   for (const std::string& a : camera.adjustments) fmt::print(log, "  adjusted: {}\n", a);
-  scene["view"] = matrixText(v);
-  scene["projection"] = matrixText(p);
   scene["camera"] = describeProjection(camera.projection);
   scene["adjustments"] = camera.adjustments;
   return camera;
@@ -257,14 +278,15 @@ json selfCheckJson(const SelfCheckResult& r) {
 }
 
 void failSelfCheck(const SelfCheckResult& r, const json& dump, const FrameFacts& facts) {
-  const json& p = dump.at("projection");
+  const bool combined = dump.contains("view_projection");
+  const json& p = combined ? dump.at("view_projection") : dump.at("projection");
   if (!r.depthRowPassed())
-    throw ImportProblem("--projection",
-                        fmt::format("self-check failed: {}.{} does not give the draw's vertices their clip-space z (largest "
+    throw ImportProblem(combined ? "--view-projection" : "--projection",
+                        fmt::format("self-check failed: {} does not give the draw's vertices their clip-space z (largest "
                                     "residual {:.3g} in NDC over {} on-screen vertices, at most {:g}): it is not the "
-                                    "projection this draw was rendered with",
-                                    p.at("block").get<std::string>(), p.at("member").get<std::string>(),
-                                    r.depthRowResidual, r.verticesOnScreen, kSelfCheckMaxDepthRowResidual));
+                                    "{} this draw was rendered with",
+                                    matrixName(p), r.depthRowResidual, r.verticesOnScreen, kSelfCheckMaxDepthRowResidual,
+                                    combined ? "view-projection" : "projection"));
   const std::string what = fmt::format(
       "the depth's decoding ({} {}), its row order (flipped: {}) or the projection's depth convention (clip z in {}) "
       "does not match this capture",
@@ -341,7 +363,7 @@ ImportedFrame importFrame(const json& dump, const fs::path& file, int index, con
   f.data.gbuffer.height = facts.rect.height;
   f.data.gbuffer.normals = importNormals(dump, folder, facts, o, s, log);
   const ImportedCamera camera = importMatrices(dump, facts, s, log);
-  if (o.normalsSpace == "view") viewNormalsToWorld(f.data.gbuffer.normals, matrixOf(dump.at("view")));
+  if (o.normalsSpace == "view") viewNormalsToWorld(f.data.gbuffer.normals, facts.appView);
   f.data.view = camera.view;
   f.data.projection = camera.projection;
   selfCheck(dump, folder, facts, f.data, o, s, log);
@@ -359,6 +381,8 @@ DumpRequest dumpRequest(const RenderDocImportOptions& o, const fs::path& file, c
   r.normals = o.normals;
   r.view = o.view;
   r.projection = o.projection;
+  r.viewProjection = o.viewProjection;
+  r.arrayRows = o.arrayRows;
   r.noSelfCheck = o.noSelfCheck;
   return r;
 }

@@ -24,7 +24,9 @@ struct RenderDocImportOptions {
   std::string depth = "auto";    // or a texture (RenderDoc's name, ResourceId::N or N)
   std::string normals = "none";  // or a texture
   std::string normalsSpace = "world";
-  std::string view, projection;  // BLOCK.member
+  std::string view, projection;  // BLOCK.member (or BLOCK.member[I], four vec4 elements)
+  std::string viewProjection;    // or one combined matrix, factored (renderdoc_camera.h)
+  bool arrayRows = false;        // BLOCK.member[I]: the elements are the matrix's rows, not its columns
   std::string renderdocPython;   // folder of a RenderDoc build's Python module; empty: the installed one
   bool noSelfCheck = false;      // import without checking against the draw's vertices (recorded)
   ImportFault fault = ImportFault::None;  // tests only

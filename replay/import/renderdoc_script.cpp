@@ -45,8 +45,10 @@ std::string tail(const std::string& text, size_t lines = 4) {
 
 std::vector<std::string> scriptArguments(const DumpRequest& r, const fs::path& script) {
   std::vector<std::string> args = {renderDocPythonInterpreter(), script.string(), r.capture.string(),
-                                   "--out", r.workDir.string(), "--depth", r.depth, "--normals", r.normals,
-                                   "--view", r.view, "--projection", r.projection};
+                                   "--out", r.workDir.string(), "--depth", r.depth, "--normals", r.normals};
+  if (r.viewProjection.empty()) args.insert(args.end(), {"--view", r.view, "--projection", r.projection});
+  else args.insert(args.end(), {"--view-projection", r.viewProjection});
+  if (r.arrayRows) args.push_back("--array-rows");
   if (!r.renderdocPython.empty()) args.insert(args.end(), {"--renderdoc-python", r.renderdocPython});
   if (r.event) args.insert(args.end(), {"--event", std::to_string(*r.event)});
   if (r.passName) args.insert(args.end(), {"--pass", *r.passName});

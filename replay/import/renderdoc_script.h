@@ -17,7 +17,8 @@ struct DumpRequest {
   std::optional<std::string> passName;
   std::string depth = "auto";
   std::string normals = "none";
-  std::string view, projection;
+  std::string view, projection, viewProjection;  // the script reads view and projection, or view_projection
+  bool arrayRows = false;
   bool noSelfCheck = false;  // the script then skips the post-vertex-shader dump
 };
 
