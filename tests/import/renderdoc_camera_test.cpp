@@ -34,13 +34,14 @@ TEST(RenderDocCamera, RowsBecomeGlmColumns) {
   EXPECT_EQ(m[0][3], 12.0f);
 }
 
-TEST(RenderDocCamera, CombinedMatrixIsRefusedNamingWhatIsMissing) {
+TEST(RenderDocCamera, CombinedMatrixNamedAsOneOfTheTwoIsRefusedPointingToViewProjection) {
   const glm::mat4 view = glm::lookAt(glm::vec3(3, 2, 4), glm::vec3(0), glm::vec3(0, 1, 0));
   const glm::mat4 mvp = vulkanPerspective() * view;
   const std::string asProjection = problemOf([&] { checkProjectionMatrix(mvp, "ubuf.MVP"); });
   EXPECT_NE(asProjection.find("--projection: ubuf.MVP is not a perspective projection: its last row is"),
             std::string::npos) << asProjection;
-  EXPECT_NE(asProjection.find("as separate members; a combined view-projection"), std::string::npos);
+  EXPECT_NE(asProjection.find("as separate members, or a combined view-projection matrix as --view-projection"),
+            std::string::npos) << asProjection;
   const std::string asView = problemOf([&] { checkViewMatrix(mvp, "ubuf.MVP"); });
   EXPECT_NE(asView.find("--view: ubuf.MVP is not a world -> view transform"), std::string::npos) << asView;
   EXPECT_EQ(problemOf([&] { checkViewMatrix(view, "c.view"); }), "no problem");

@@ -83,11 +83,13 @@ inline float halfToFloat(uint16_t h) {
 }
 
 // rd_scene's frames: captures in DIR/captures, read-back in DIR/readback.
-inline fs::path renderScene(const std::string& name, const std::string& format, bool reversed, int frames = 1) {
+// `extra`: more rd_scene options (--camera LAYOUT, --stripped-names).
+inline fs::path renderScene(const std::string& name, const std::string& format, bool reversed, int frames = 1,
+                            const std::string& extra = "") {
   const fs::path dir = scratch(name);
-  const Command c = run(fmt::format("{} --depth-format {} {} --frames {} --capture-dir {} --readback-dir {}",
+  const Command c = run(fmt::format("{} --depth-format {} {} --frames {} --capture-dir {} --readback-dir {} {}",
                                     RD_SCENE_EXE, format, reversed ? "--reversed" : "", frames,
-                                    (dir / "captures").string(), (dir / "readback").string()));
+                                    (dir / "captures").string(), (dir / "readback").string(), extra));
   EXPECT_EQ(c.exitCode, 0) << c.output;
   return dir;
 }

@@ -8,6 +8,9 @@
 //   READBACK_DIR/NNNN.json      width, height, depth format, view and projection (column-major)
 // Usage: rd_scene --depth-format d16|x8d24|d24s8|d32|d32s8 [--reversed] [--size WxH] [--frames N]
 //                 [--capture-dir DIR] --readback-dir DIR [--validate]
+//                 [--camera separate|combined|model-folded|columns|push-constants] [--stripped-names]
+// --camera picks which copy of the camera positions the vertices (shaders/scene.vert; all are
+// filled); --stripped-names draws with the vertex shader's SPIR-V names stripped.
 // Without --capture-dir nothing is captured (RenderDoc is not loaded); --validate then runs the
 // program under the Khronos validation layer and fails on any message.
 #include <dlfcn.h>
@@ -72,6 +75,14 @@ Options parseOptions(int argc, char** argv) {
       o.readbackDir = value();
     } else if (a == "--validate") {
       o.render.validate = true;
+    } else if (a == "--camera") {
+      static const std::map<std::string, int> layouts = {
+          {"separate", 0}, {"combined", 1}, {"model-folded", 2}, {"columns", 3}, {"push-constants", 4}};
+      const std::string layout = value();
+      if (!layouts.count(layout)) usage("--camera is separate, combined, model-folded, columns or push-constants");
+      o.render.cameraLayout = layouts.at(layout);
+    } else if (a == "--stripped-names") {
+      o.render.strippedNames = true;
     } else {
       usage("unknown argument " + a);
     }
@@ -123,7 +134,8 @@ int main(int argc, char** argv) {
       writeBinary(o.readbackDir / (std::string(stem) + ".normals"), readback.normalsHalf);
       nlohmann::json meta = {{"width", o.render.width},         {"height", o.render.height},
                              {"depth_format", o.depthFormatName}, {"reversed", o.render.reversed},
-                             {"view", matrixJson(camera.view)},  {"projection", matrixJson(camera.projection)}};
+                             {"view", matrixJson(camera.view)},  {"projection", matrixJson(camera.projection)},
+                             {"model", matrixJson(sceneModel())}};
       std::ofstream(o.readbackDir / (std::string(stem) + ".json")) << meta.dump(2) << "\n";
     }
     if (renderer.validationMessages()) {

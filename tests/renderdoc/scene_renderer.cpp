@@ -11,6 +11,10 @@
 namespace aor::rdtest {
 namespace {
 
+// scene.vert's Object block: view and projection, the 128 bytes every device allows.
+constexpr uint32_t kPushBytes = 128;
+
+
 void check(VkResult r, const char* what) {
   if (r != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed: VkResult " + std::to_string(int(r)));
 }
@@ -315,7 +319,7 @@ void SceneRenderer::State::createDescriptors() {
     writes[i].pBufferInfo = &bufferInfos[i];
   }
   vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
-  const VkPushConstantRange model{VK_SHADER_STAGE_VERTEX_BIT, 0, 64};
+  const VkPushConstantRange model{VK_SHADER_STAGE_VERTEX_BIT, 0, kPushBytes};
   VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pl.setLayoutCount = 1;
   pl.pSetLayouts = &setLayout;
@@ -333,13 +337,17 @@ VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDept
     check(vkCreateShaderModule(device, &info, nullptr, &m), "vkCreateShaderModule");
     return m;
   };
-  VkShaderModule vert = module(spirv::scene_vert, spirv::scene_vert_words);
+  VkShaderModule vert = o.strippedNames ? module(spirv::scene_vert_stripped, spirv::scene_vert_stripped_words)
+                                        : module(spirv::scene_vert, spirv::scene_vert_words);
+  const VkSpecializationMapEntry layoutEntry{0, 0, sizeof(int)};
+  const VkSpecializationInfo layoutConstant{1, &layoutEntry, sizeof(int), &o.cameraLayout};
   VkShaderModule frag = module(spirv::scene_frag, spirv::scene_frag_words);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
   stages[0].module = vert;
   stages[0].pName = "main";
+  stages[0].pSpecializationInfo = &layoutConstant;
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = frag;
   stages[1].pName = "main";
@@ -420,6 +428,15 @@ void SceneRenderer::State::record(const Camera& camera) {
   std::memcpy(u + 128, tint, 16);
   const glm::mat4 light = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 0.5f, 20.0f);
   std::memcpy(u + 144, glm::value_ptr(light), 64);
+  const glm::mat4 viewProjection = camera.projection * camera.view;
+  const glm::mat4 modelViewProjection = viewProjection * sceneModel();
+  const glm::mat4 inverseModel = glm::inverse(sceneModel());
+  std::memcpy(u + 208, glm::value_ptr(viewProjection), 64);
+  std::memcpy(u + 272, glm::value_ptr(modelViewProjection), 64);
+  std::memcpy(u + 336, glm::value_ptr(inverseModel), 64);
+  std::memcpy(u + 400, glm::value_ptr(camera.view), 64);  // columns[0..3]
+  std::memcpy(u + 464, glm::value_ptr(camera.projection), 64);  // columns[4..7]
+  glm::mat4 push[2] = {camera.view, camera.projection};
 
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -439,8 +456,7 @@ void SceneRenderer::State::record(const Camera& camera) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbufferPipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &offset);
-  const glm::mat4 identity(1.0f);
-  vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, 64, glm::value_ptr(identity));
+  vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, kPushBytes, push);
   for (size_t i = 0; i + 1 < mesh.firstVertex.size(); ++i)
     vkCmdDraw(cmd, mesh.firstVertex[i + 1] - mesh.firstVertex[i], 1, mesh.firstVertex[i], 0);
   vkCmdEndRenderPass(cmd);
@@ -454,7 +470,7 @@ void SceneRenderer::State::record(const Camera& camera) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, overlayPipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &offset);
-  vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, 64, glm::value_ptr(identity));
+  vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, kPushBytes, push);
   vkCmdDraw(cmd, mesh.firstVertex[1], 1, 0, 0);
   vkCmdEndRenderPass(cmd);
   label(nullptr, false);
@@ -520,7 +536,7 @@ SceneRenderer::SceneRenderer(const RenderOptions& options) : s_(std::make_unique
   s.gbufferFramebuffer = s.createFramebuffer(s.gbufferPass, {s.normals.view, s.depth.view});
   s.overlayFramebuffer = s.createFramebuffer(s.overlayPass, {s.overlay.view});
   const size_t pixels = size_t(options.width) * size_t(options.height);
-  s.uniforms = s.createBuffer(208, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  s.uniforms = s.createBuffer(528, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   s.extra = s.createBuffer(64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   const glm::mat4 identity(1.0f);
   std::memcpy(s.extra.mapped, glm::value_ptr(identity), 64);

@@ -18,7 +18,14 @@ struct RenderOptions {
   VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
   bool reversed = false;
   bool validate = false;  // Khronos validation with synchronization validation; messages counted
+  int cameraLayout = 0;   // scene.vert's kCameraLayout: which copy of the camera positions the vertices
+  bool strippedNames = false;  // the vertex shader without its SPIR-V names (as stripped release shaders)
 };
+
+// The rigid model the P.V.M copy of the camera folds in (world -> the model's frame is its inverse).
+inline glm::mat4 sceneModel() {
+  return glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, -0.2f)) * glm::rotate(glm::mat4(1.0f), 0.7f, glm::vec3(0, 1, 0));
+}
 
 struct FrameReadback {
   std::vector<float> depth;           // width*height, the attachment's values as floats (Vulkan's unorm rule)
