@@ -62,6 +62,8 @@ void registerImportCommand(CLI::App& app) {
                                   "instead of --view and --projection: their product (P.V, or P.V.M with a rigid model), "
                                   "factored exactly into a perspective projection and a rigid view");
   combined->excludes(view)->excludes(projection);
+  rd->add_option("--sample", o.sample, "of multisampled depth (and normals), the sample to import (default 0)")
+      ->check(wholeIn(0, 63));
   rd->add_flag("--array-rows", o.arrayRows, "BLOCK.member[I]: the four elements are the matrix's rows (default: its columns)");
   rd->add_option("--frames-from-dir", args->framesFromDir, "every .rdc in this folder, one frame each");
   rd->add_flag("--no-self-check", o.noSelfCheck,

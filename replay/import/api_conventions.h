@@ -3,9 +3,11 @@
 // draw (never assumed from the byte count or the format), and the exact changes that bring a
 // frame to the capture format's conventions (captures/FORMAT.md: Vulkan's clip z in [0, 1], row 0
 // at the top, NDC y = -1 there).
+#include <optional>
 #include <string>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 namespace aor {
 
@@ -30,5 +32,11 @@ double windowDepth(const ApiConventions& c, double ndcZ);
 // The projection's depth row brought from clip z in [-1, 1] to [0, 1] (row2' = (row2 + row3) / 2),
 // which leaves x, y and w as they are; unchanged for [0, 1].
 glm::mat4 projectionToZeroToOne(const ApiConventions& c, const glm::mat4& projection);
+
+// Where sample `sample` of a `samples`-sample pixel lies inside it (0..1 from the pixel's top-left
+// corner, texel rows as stored): the standard sample locations of Vulkan (and D3D), which the
+// device must use when it reports standardSampleLocations; nullopt for a count without a standard
+// table. One sample: the centre.
+std::optional<glm::dvec2> standardSamplePosition(int samples, int sample);
 
 }  // namespace aor

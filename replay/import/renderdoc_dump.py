@@ -48,6 +48,7 @@ def parse_arguments():
     p.add_argument("--projection")
     p.add_argument("--view-projection", dest="view_projection")
     p.add_argument("--array-rows", action="store_true")
+    p.add_argument("--sample", type=int, default=0)
     p.add_argument("--no-self-check", action="store_true")
     return p.parse_args()
 
@@ -219,31 +220,36 @@ def scene_draw(frame, with_depth):
     return a, m, "last draw with a depth target (none of the last %d tests and writes depth)" % skipped
 
 
-def texture_dump(frame, rid, mip, layer, path, field):
+def texture_dump(frame, rid, mip, layer, sample, path, field):
+    """One subresource's texels; of a multisampled texture, sample `sample` (RenderDoc returns each)."""
     rd = frame.rd
     tex = frame.textures[rid]
-    if tex.msSamp > 1:
-        raise ImportFailure(field, "%s is multisampled (%d samples): not supported" % (frame.name_of(rid), tex.msSamp))
-    data = frame.controller.GetTextureData(rid, rd.Subresource(mip, layer, 0))
+    if sample >= max(1, tex.msSamp):
+        if tex.msSamp > 1:
+            raise ImportFailure("--sample", "%s has %d samples: --sample is 0 to %d, not %d"
+                                % (frame.name_of(rid), tex.msSamp, tex.msSamp - 1, sample))
+        raise ImportFailure("--sample", "%s is not multisampled: --sample %d has no sample to pick"
+                            % (frame.name_of(rid), sample))
+    data = frame.controller.GetTextureData(rid, rd.Subresource(mip, layer, sample))
     with open(path, "wb") as f:
         f.write(bytes(data))
     fmt = tex.format
     return {
         "resource": frame.name_of(rid), "id": id_number(rid), "file": os.path.basename(path),
         "width": max(1, tex.width >> mip), "height": max(1, tex.height >> mip), "mip": mip, "layer": layer,
-        "bytes": len(data),
+        "samples": max(1, tex.msSamp), "sample": sample, "bytes": len(data),
         "format": {"name": fmt.Name(), "components": fmt.compCount, "component_bytes": fmt.compByteWidth,
                    "bgra": bool(fmt.BGRAOrder())},
     }
 
 
-def dump_depth(frame, out_dir):
+def dump_depth(frame, args, out_dir):
     bound = frame.controller.GetPipelineState().GetDepthTarget()
     if bound.resourceId == frame.rd.ResourceId.Null():
         raise ImportFailure("--event", "no depth target at event %s; the capture's draws with a depth target: %s"
                             % (frame.current, list_draws(frame, [(a, m) for a, m in frame.draws()
                                                                   if a.depthOut != frame.rd.ResourceId.Null()])))
-    return texture_dump(frame, bound.resourceId, bound.firstMip, bound.firstSlice,
+    return texture_dump(frame, bound.resourceId, bound.firstMip, bound.firstSlice, args.sample,
                         os.path.join(out_dir, "depth.bin"), "--depth")
 
 
@@ -255,7 +261,8 @@ def dump_normals(frame, args, out_dir):
     for bound in frame.controller.GetPipelineState().GetOutputTargets():
         if bound.resourceId == rid:
             mip, layer = bound.firstMip, bound.firstSlice
-    return texture_dump(frame, rid, mip, layer, os.path.join(out_dir, "normals.bin"), "--normals")
+    sample = args.sample if frame.textures[rid].msSamp > 1 else 0  # the depth's sample, where the normals have samples
+    return texture_dump(frame, rid, mip, layer, sample, os.path.join(out_dir, "normals.bin"), "--normals")
 
 
 SHADER_STAGES = ("Vertex", "Hull", "Domain", "Geometry", "Pixel")
@@ -536,7 +543,7 @@ def dump(args, result):
         result["viewport"] = viewport_of(controller.GetPipelineState())
         result["conventions"] = conventions_of(rd, controller, result["api"])
         result["blocks"] = block_listing(frame)
-        result["depth"] = dump_depth(frame, args.out)
+        result["depth"] = dump_depth(frame, args, args.out)
         if depth_id is not None and result["depth"]["id"] != id_number(depth_id):
             raise ImportFailure("--depth", "at event %s the depth target is %s, not %s"
                                 % (frame.current, result["depth"]["resource"], args.depth))

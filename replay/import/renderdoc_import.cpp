@@ -63,7 +63,22 @@ struct FrameFacts {
   double depthQuantum = 0.0;
   glm::mat4 appProjection{1.0f};
   glm::mat4 appView{1.0f};  // the application's world -> view (factored when combined)
+  glm::dvec2 samplePosition{0.5, 0.5};  // where the imported sample lies in its pixel, rows as the capture's
 };
+
+// Where the imported sample of a multisampled depth target lies in its pixel: the standard
+// locations, turned with GL's rows; a count without a standard table is refused (the self-check
+// would compare the wrong points).
+std::string sampleText(const json& d, FrameFacts& facts) {
+  const int samples = d.value("samples", 1), sample = d.value("sample", 0);
+  if (samples <= 1) return "";
+  const auto position = standardSamplePosition(samples, sample);
+  if (!position)
+    throw ImportProblem("--sample", fmt::format("{} has {} samples, a count without standard sample locations",
+                                                d.at("resource").get<std::string>(), samples));
+  facts.samplePosition = {position->x, facts.applied.rowsBottomUp ? 1.0 - position->y : position->y};
+  return fmt::format("; {} samples, sample {} (at {:g}, {:g} in its pixel)", samples, sample, position->x, position->y);
+}
 
 // The captured API's conventions, as the dump script read them from the draw's state.
 ApiConventions conventionsOf(const json& dump) {
@@ -99,6 +114,7 @@ TexelImage readTexels(const json& entry, const fs::path& folder) {
   image.height = entry.at("height");
   image.format = entry.at("format").at("name");
   image.bgra = entry.at("format").at("bgra");
+  image.samples = entry.value("samples", 1);
   std::ifstream in(folder / entry.at("file").get<std::string>(), std::ios::binary);
   image.bytes.assign(std::istreambuf_iterator<char>(in), {});
   return image;
@@ -170,10 +186,15 @@ std::vector<float> importDepth(const json& dump, const fs::path& folder, const R
   rect = viewportRect(v.at("x"), v.at("y"), v.at("width"), v.at("height"), range.at(0), range.at(1), texels.width,
                       texels.height);
   const bool whole = rect.x == 0 && rect.y == 0 && rect.width == texels.width && rect.height == texels.height;
-  fmt::print(log, "  depth: {}; viewport {}x{} at ({}, {}){}{}\n", resourceText(d), rect.width, rect.height, rect.x,
-             rect.y, whole ? "" : ", cropped to it", facts.applied.rowsBottomUp ? "; rows bottom-up, flipped" : "");
+  const std::string sample = sampleText(d, facts);
+  fmt::print(log, "  depth: {}; viewport {}x{} at ({}, {}){}{}{}\n", resourceText(d), rect.width, rect.height, rect.x,
+             rect.y, whole ? "" : ", cropped to it", facts.applied.rowsBottomUp ? "; rows bottom-up, flipped" : "", sample);
   scene["depth"] = {{"resource", d.at("resource")}, {"id", d.at("id")}, {"format", d.at("format").at("name")},
                     {"mip", d.at("mip")}, {"layer", d.at("layer")}};
+  if (d.value("samples", 1) > 1) {
+    scene["depth"]["samples"] = d.at("samples");
+    scene["depth"]["sample"] = d.at("sample");
+  }
   scene["viewport"] = {{"x", rect.x}, {"y", rect.y}, {"width", rect.width}, {"height", rect.height},
                        {"flips_y", rect.flipsY}};
   scene["rows_flipped"] = facts.applied.rowsBottomUp;
@@ -331,6 +352,7 @@ void selfCheck(const json& dump, const fs::path& folder, const FrameFacts& facts
   in.appProjection = facts.appProjection;
   in.captureProjection = data.projection;
   in.depthQuantum = facts.depthQuantum;
+  in.samplePosition = facts.samplePosition;
   const SelfCheckResult r = runSelfCheck(in);
   const double seconds = check.at("seconds").get<double>() +
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -383,6 +405,7 @@ DumpRequest dumpRequest(const RenderDocImportOptions& o, const fs::path& file, c
   r.projection = o.projection;
   r.viewProjection = o.viewProjection;
   r.arrayRows = o.arrayRows;
+  r.sample = o.sample;
   r.noSelfCheck = o.noSelfCheck;
   return r;
 }

@@ -49,6 +49,7 @@ std::vector<std::string> scriptArguments(const DumpRequest& r, const fs::path& s
   if (r.viewProjection.empty()) args.insert(args.end(), {"--view", r.view, "--projection", r.projection});
   else args.insert(args.end(), {"--view-projection", r.viewProjection});
   if (r.arrayRows) args.push_back("--array-rows");
+  if (r.sample != 0) args.insert(args.end(), {"--sample", std::to_string(r.sample)});
   if (!r.renderdocPython.empty()) args.insert(args.end(), {"--renderdoc-python", r.renderdocPython});
   if (r.event) args.insert(args.end(), {"--event", std::to_string(*r.event)});
   if (r.passName) args.insert(args.end(), {"--pass", *r.passName});

@@ -19,6 +19,7 @@ struct DumpRequest {
   std::string normals = "none";
   std::string view, projection, viewProjection;  // the script reads view and projection, or view_projection
   bool arrayRows = false;
+  int sample = 0;
   bool noSelfCheck = false;  // the script then skips the post-vertex-shader dump
 };
 

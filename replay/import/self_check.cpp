@@ -107,7 +107,7 @@ void sampleTriangle(const SelfCheckInput& in, const ScreenCorner* t, SelfCheckRe
   for (int y = y0 + step / 2; y <= y1; y += step)
     for (int x = x0 + step / 2; x <= x1; x += step) {
       glm::dvec3 b;
-      if (innerWeights(t, {x + 0.5, y + 0.5}, area, b)) comparePoint(in, t, b, x, y, slope, out);
+      if (innerWeights(t, glm::dvec2(x, y) + in.samplePosition, area, b)) comparePoint(in, t, b, x, y, slope, out);
     }
 }
 

@@ -33,6 +33,7 @@ struct SelfCheckInput {
   glm::mat4 appProjection{1.0f};      // as the draw's shaders hold it
   glm::mat4 captureProjection{1.0f};  // as the capture holds it
   double depthQuantum = 0.0;          // one step of a unorm format; 0 for float depth
+  glm::dvec2 samplePosition{0.5, 0.5};  // where the depth's sample lies in its pixel (multisampled: not the centre)
 };
 
 struct SelfCheckResult {

@@ -12,6 +12,7 @@ struct TexelImage {
   std::string format;       // RenderDoc's name: D16, D24, D24S8, D32, D32S8, R16G16B16A16_FLOAT, ...
   bool bgra = false;        // components stored B, G, R(, A)
   std::vector<uint8_t> bytes;
+  int samples = 1;          // of a multisampled texture, one sample's texels (RenderDoc lays those out its own way)
 };
 
 // A mistake made on purpose, for the tests that show the self-check catches it.

@@ -151,5 +151,25 @@ TEST(SelfCheckArithmetic, ATriangleThroughTheEyePlaneIsCheckedOnItsVisiblePart) 
   EXPECT_EQ(r.disagreed, 0u);
 }
 
+// The standard sample locations a multisampled import is checked at: the 4x table as the Vulkan
+// specification lists it, every location distinct and inside its pixel, none for other counts.
+TEST(SelfCheck, StandardSamplePositions) {
+  const glm::dvec2 four[] = {{0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}};
+  for (int s = 0; s < 4; ++s) EXPECT_EQ(*standardSamplePosition(4, s), four[s]);
+  EXPECT_EQ(*standardSamplePosition(1, 0), glm::dvec2(0.5, 0.5));
+  for (int count : {2, 8, 16}) {
+    std::vector<glm::dvec2> seen;
+    for (int s = 0; s < count; ++s) {
+      const auto p = standardSamplePosition(count, s);
+      ASSERT_TRUE(p.has_value());
+      EXPECT_TRUE(p->x >= 0.0 && p->x < 1.0 && p->y >= 0.0 && p->y < 1.0);
+      EXPECT_EQ(std::count(seen.begin(), seen.end(), *p), 0);
+      seen.push_back(*p);
+    }
+  }
+  EXPECT_FALSE(standardSamplePosition(3, 0).has_value());
+  EXPECT_FALSE(standardSamplePosition(4, 4).has_value());
+}
+
 }  // namespace
 }  // namespace aor

@@ -64,6 +64,9 @@ struct SceneRenderer::State {
   uint32_t family = 0;
   VkQueue queue = VK_NULL_HANDLE;
   Image depth, normals, overlay;
+  Image depthResolved, normalsResolved;  // multisampled G-buffer: sample 0 of depth, normals averaged
+  const Image& readDepth() const { return o.samples > 1 ? depthResolved : depth; }
+  const Image& readNormals() const { return o.samples > 1 ? normalsResolved : normals; }
   VkRenderPass gbufferPass = VK_NULL_HANDLE, overlayPass = VK_NULL_HANDLE;
   VkFramebuffer gbufferFramebuffer = VK_NULL_HANDLE, overlayFramebuffer = VK_NULL_HANDLE;
   Buffer uniforms, extra, vertices, depthReadback, normalReadback;
@@ -79,7 +82,8 @@ struct SceneRenderer::State {
   void createInstance();
   void createDevice();
   uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
-  Image createImage(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, const char* name);
+  Image createImage(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, const char* name,
+                    int samples = 1);
   Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage);
   void name(VkObjectType type, uint64_t handle, const char* label);
   VkRenderPass createRenderPass(bool withDepth);
@@ -173,7 +177,7 @@ void SceneRenderer::State::name(VkObjectType type, uint64_t handle, const char* 
 }
 
 Image SceneRenderer::State::createImage(VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect,
-                                        const char* label) {
+                                        const char* label, int samples) {
   Image img;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
@@ -181,7 +185,7 @@ Image SceneRenderer::State::createImage(VkFormat format, VkImageUsageFlags usage
   info.extent = {uint32_t(o.width), uint32_t(o.height), 1};
   info.mipLevels = 1;
   info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.samples = VkSampleCountFlagBits(samples);
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage;
   check(vkCreateImage(device, &info, nullptr, &img.image), "vkCreateImage");
@@ -221,30 +225,56 @@ Buffer SceneRenderer::State::createBuffer(VkDeviceSize size, VkBufferUsageFlags 
 }
 
 // Both passes end with their images ready for the copies; the incoming dependency orders this
-// frame's attachment writes after the previous frame's copies and writes.
+// frame's attachment writes after the previous frame's copies and writes. A multisampled G-buffer
+// resolves into single-sample images (depth: sample 0; normals: the average), which are copied.
 VkRenderPass SceneRenderer::State::createRenderPass(bool withDepth) {
-  std::vector<VkAttachmentDescription> attachments(1);
-  attachments[0].format = withDepth ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_UNORM;
-  attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachments[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  attachments[0].finalLayout = withDepth ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  VkAttachmentReference color{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  if (withDepth) {
-    VkAttachmentDescription d = attachments[0];
-    d.format = o.depthFormat;
-    d.stencilLoadOp = hasStencil(o.depthFormat) ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    d.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    attachments.push_back(d);
+  const bool multisampled = withDepth && o.samples > 1;
+  const VkSampleCountFlagBits samples = multisampled ? VkSampleCountFlagBits(o.samples) : VK_SAMPLE_COUNT_1_BIT;
+  auto attachment = [&](VkFormat format, VkSampleCountFlagBits count, VkImageLayout finalLayout) {
+    VkAttachmentDescription2 a{VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2};
+    a.format = format;
+    a.samples = count;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = hasStencil(format) ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = hasStencil(format) ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.finalLayout = finalLayout;
+    return a;
+  };
+  const VkImageLayout copied = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  const VkImageLayout kept = multisampled ? VK_IMAGE_LAYOUT_GENERAL : copied;  // the copies read the resolved images
+  std::vector<VkAttachmentDescription2> attachments;
+  if (!withDepth) {
+    attachments.push_back(attachment(VK_FORMAT_R8G8B8A8_UNORM, samples, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL));
+  } else {
+    attachments.push_back(attachment(VK_FORMAT_R16G16B16A16_SFLOAT, samples, kept));
+    attachments.push_back(attachment(o.depthFormat, samples, kept));
+    if (multisampled) {
+      attachments.push_back(attachment(VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLE_COUNT_1_BIT, copied));
+      attachments.push_back(attachment(o.depthFormat, VK_SAMPLE_COUNT_1_BIT, copied));
+      attachments[2].loadOp = attachments[3].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+      attachments[3].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    }
   }
-  VkSubpassDescription subpass{};
+  const VkImageAspectFlags depthAspects = VK_IMAGE_ASPECT_DEPTH_BIT | (hasStencil(o.depthFormat) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+  const VkAttachmentReference2 color{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 0,
+                                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_ASPECT_COLOR_BIT};
+  const VkAttachmentReference2 depthRef{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 1,
+                                        VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, depthAspects};
+  const VkAttachmentReference2 colorResolve{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 2,
+                                            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_ASPECT_COLOR_BIT};
+  const VkAttachmentReference2 depthResolve{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 3,
+                                            VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, depthAspects};
+  VkSubpassDescriptionDepthStencilResolve resolve{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE};
+  resolve.depthResolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+  resolve.stencilResolveMode = hasStencil(o.depthFormat) ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
+  resolve.pDepthStencilResolveAttachment = &depthResolve;
+  VkSubpassDescription2 subpass{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_2, multisampled ? &resolve : nullptr};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   subpass.colorAttachmentCount = 1;
   subpass.pColorAttachments = &color;
+  subpass.pResolveAttachments = multisampled ? &colorResolve : nullptr;
   subpass.pDepthStencilAttachment = withDepth ? &depthRef : nullptr;
   const VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                                                 VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
@@ -252,7 +282,7 @@ VkRenderPass SceneRenderer::State::createRenderPass(bool withDepth) {
   const VkAccessFlags attachmentWrites =
       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   const VkAccessFlags attachmentAccess = attachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-  VkSubpassDependency deps[2] = {};
+  VkSubpassDependency2 deps[2] = {{VK_STRUCTURE_TYPE_SUBPASS_DEPENDENCY_2}, {VK_STRUCTURE_TYPE_SUBPASS_DEPENDENCY_2}};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
   deps[0].srcStageMask = attachmentStages | VK_PIPELINE_STAGE_TRANSFER_BIT;
@@ -265,7 +295,7 @@ VkRenderPass SceneRenderer::State::createRenderPass(bool withDepth) {
   deps[1].srcAccessMask = attachmentWrites;
   deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
   deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  VkRenderPassCreateInfo2 info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO_2};
   info.attachmentCount = uint32_t(attachments.size());
   info.pAttachments = attachments.data();
   info.subpassCount = 1;
@@ -273,7 +303,7 @@ VkRenderPass SceneRenderer::State::createRenderPass(bool withDepth) {
   info.dependencyCount = 2;
   info.pDependencies = deps;
   VkRenderPass pass;
-  check(vkCreateRenderPass(device, &info, nullptr, &pass), "vkCreateRenderPass");
+  check(vkCreateRenderPass2(device, &info, nullptr, &pass), "vkCreateRenderPass2");
   return pass;
 }
 
@@ -374,7 +404,7 @@ VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDept
   raster.cullMode = VK_CULL_MODE_NONE;
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  ms.rasterizationSamples = withDepth ? VkSampleCountFlagBits(o.samples) : VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = withDepth;
   ds.depthWriteEnable = withDepth;
@@ -478,9 +508,9 @@ void SceneRenderer::State::record(const Camera& camera) {
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
   copy.imageExtent = {uint32_t(o.width), uint32_t(o.height), 1};
-  vkCmdCopyImageToBuffer(cmd, depth.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthReadback.buffer, 1, &copy);
+  vkCmdCopyImageToBuffer(cmd, readDepth().image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthReadback.buffer, 1, &copy);
   copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
-  vkCmdCopyImageToBuffer(cmd, normals.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, normalReadback.buffer, 1, &copy);
+  vkCmdCopyImageToBuffer(cmd, readNormals().image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, normalReadback.buffer, 1, &copy);
   VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -507,7 +537,8 @@ void SceneRenderer::State::destroy() {
   vkDestroyFramebuffer(device, overlayFramebuffer, nullptr);
   vkDestroyRenderPass(device, gbufferPass, nullptr);
   vkDestroyRenderPass(device, overlayPass, nullptr);
-  for (Image* i : {&depth, &normals, &overlay}) {
+  for (Image* i : {&depth, &normals, &overlay, &depthResolved, &normalsResolved}) {
+    if (!i->image) continue;
     vkDestroyImageView(device, i->view, nullptr);
     vkDestroyImage(device, i->image, nullptr);
     vkFreeMemory(device, i->memory, nullptr);
@@ -523,17 +554,23 @@ SceneRenderer::SceneRenderer(const RenderOptions& options) : s_(std::make_unique
   s.createDevice();
   VkImageAspectFlags depthAspect = VK_IMAGE_ASPECT_DEPTH_BIT;
   if (hasStencil(options.depthFormat)) depthAspect |= VK_IMAGE_ASPECT_STENCIL_BIT;
-  s.depth = s.createImage(options.depthFormat,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, depthAspect,
-                          "gbuffer.depth");
-  s.normals = s.createImage(VK_FORMAT_R16G16B16A16_SFLOAT,
-                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                            VK_IMAGE_ASPECT_COLOR_BIT, "gbuffer.normals");
+  const VkImageUsageFlags depthUse = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  const VkImageUsageFlags colorUse = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  s.depth = s.createImage(options.depthFormat, depthUse, depthAspect, "gbuffer.depth", options.samples);
+  s.normals = s.createImage(VK_FORMAT_R16G16B16A16_SFLOAT, colorUse, VK_IMAGE_ASPECT_COLOR_BIT, "gbuffer.normals",
+                            options.samples);
+  if (options.samples > 1) {
+    s.depthResolved = s.createImage(options.depthFormat, depthUse, depthAspect, "gbuffer.depth_resolved");
+    s.normalsResolved = s.createImage(VK_FORMAT_R16G16B16A16_SFLOAT, colorUse, VK_IMAGE_ASPECT_COLOR_BIT,
+                                      "gbuffer.normals_resolved");
+  }
   s.overlay = s.createImage(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
                             "overlay");
   s.gbufferPass = s.createRenderPass(true);
   s.overlayPass = s.createRenderPass(false);
-  s.gbufferFramebuffer = s.createFramebuffer(s.gbufferPass, {s.normals.view, s.depth.view});
+  s.gbufferFramebuffer = s.createFramebuffer(s.gbufferPass, options.samples > 1
+      ? std::vector<VkImageView>{s.normals.view, s.depth.view, s.normalsResolved.view, s.depthResolved.view}
+      : std::vector<VkImageView>{s.normals.view, s.depth.view});
   s.overlayFramebuffer = s.createFramebuffer(s.overlayPass, {s.overlay.view});
   const size_t pixels = size_t(options.width) * size_t(options.height);
   s.uniforms = s.createBuffer(528, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);

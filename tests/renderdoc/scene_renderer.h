@@ -20,6 +20,7 @@ struct RenderOptions {
   bool validate = false;  // Khronos validation with synchronization validation; messages counted
   int cameraLayout = 0;   // scene.vert's kCameraLayout: which copy of the camera positions the vertices
   bool strippedNames = false;  // the vertex shader without its SPIR-V names (as stripped release shaders)
+  int samples = 1;  // the G-buffer's sample count; above 1 the read-back is sample 0 (depth) and the average (normals)
 };
 
 // The rigid model the P.V.M copy of the camera folds in (world -> the model's frame is its inverse).
