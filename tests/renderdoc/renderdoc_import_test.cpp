@@ -253,6 +253,22 @@ TEST(RenderDocImport, MultisampledDepthImportsEachSample) {
       << none.output;
 }
 
+// Issue 45 item 4 on Vulkan: a last draw in the depth pass with depth test and writes off (as a
+// composite after the scene) is passed over, and the default event is the scene's last draw.
+TEST(RenderDocImport, TheDefaultEventPassesOverALastDrawWithDepthOff) {
+  const fs::path dir = renderScene("final-composite", "d32", false, 1, "--final-composite");
+  const Command r = aoreplay(fmt::format("import renderdoc {} --out {} {}", (dir / "captures" / "0000.rdc").string(),
+                                         (dir / "imported").string(), kCamera));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find(fmt::format("event {} vkCmdDraw() in gbuffer: last draw that tests and writes depth (1 later "
+                                      "draw with depth test or writes off passed over)", kLastGBufferDraw)),
+            std::string::npos) << r.output;
+  const std::vector<float> depth = readBinary<float>(dir / "readback" / "0000.depth");
+  const GBuffer g = loadGBuffer(loadCapture(dir / "imported"), 0);
+  ASSERT_EQ(g.depth.size(), depth.size());
+  EXPECT_EQ(std::memcmp(g.depth.data(), depth.data(), depth.size() * sizeof(float)), 0);
+}
+
 TEST(RenderDocImport, ImportedFrameReplaysValidated) {
   const fs::path dir = renderScene("replay", "d24s8", false);
   const fs::path capture = dir / "imported";

@@ -74,7 +74,7 @@ struct SceneRenderer::State {
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-  VkPipeline gbufferPipeline = VK_NULL_HANDLE, overlayPipeline = VK_NULL_HANDLE;
+  VkPipeline gbufferPipeline = VK_NULL_HANDLE, overlayPipeline = VK_NULL_HANDLE, compositePipeline = VK_NULL_HANDLE;
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -89,7 +89,7 @@ struct SceneRenderer::State {
   VkRenderPass createRenderPass(bool withDepth);
   VkFramebuffer createFramebuffer(VkRenderPass pass, std::vector<VkImageView> views);
   void createDescriptors();
-  VkPipeline createPipeline(VkRenderPass pass, bool withDepth);
+  VkPipeline createPipeline(VkRenderPass pass, bool withDepth, bool composite = false);
   void record(const Camera& camera);
   void label(const char* text, bool begin);
   void destroy();
@@ -358,7 +358,9 @@ void SceneRenderer::State::createDescriptors() {
   check(vkCreatePipelineLayout(device, &pl, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
 }
 
-VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDepth) {
+// `composite`: in the depth pass with depth test, depth writes and colour writes off (a stand-in for
+// a post-processing draw after the scene, which the import's default event must pass over).
+VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDepth, bool composite) {
   auto module = [&](const uint32_t* words, size_t count) {
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     info.codeSize = count * 4;
@@ -406,11 +408,11 @@ VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDept
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   ms.rasterizationSamples = withDepth ? VkSampleCountFlagBits(o.samples) : VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  ds.depthTestEnable = withDepth;
-  ds.depthWriteEnable = withDepth;
+  ds.depthTestEnable = withDepth && !composite;
+  ds.depthWriteEnable = withDepth && !composite;
   ds.depthCompareOp = o.reversed ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = 0xF;
+  blend.colorWriteMask = composite ? 0 : 0xF;
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   cb.attachmentCount = 1;
   cb.pAttachments = &blend;
@@ -489,6 +491,10 @@ void SceneRenderer::State::record(const Camera& camera) {
   vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, kPushBytes, push);
   for (size_t i = 0; i + 1 < mesh.firstVertex.size(); ++i)
     vkCmdDraw(cmd, mesh.firstVertex[i + 1] - mesh.firstVertex[i], 1, mesh.firstVertex[i], 0);
+  if (compositePipeline) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compositePipeline);
+    vkCmdDraw(cmd, mesh.firstVertex[1], 1, 0, 0);
+  }
   vkCmdEndRenderPass(cmd);
   label(nullptr, false);
 
@@ -526,6 +532,7 @@ void SceneRenderer::State::destroy() {
   vkDestroyCommandPool(device, commandPool, nullptr);
   vkDestroyPipeline(device, gbufferPipeline, nullptr);
   vkDestroyPipeline(device, overlayPipeline, nullptr);
+  if (compositePipeline) vkDestroyPipeline(device, compositePipeline, nullptr);
   vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
   vkDestroyDescriptorPool(device, pool, nullptr);
   vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
@@ -584,6 +591,7 @@ SceneRenderer::SceneRenderer(const RenderOptions& options) : s_(std::make_unique
   s.createDescriptors();
   s.gbufferPipeline = s.createPipeline(s.gbufferPass, true);
   s.overlayPipeline = s.createPipeline(s.overlayPass, false);
+  if (options.finalComposite) s.compositePipeline = s.createPipeline(s.gbufferPass, true, true);
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   poolInfo.queueFamilyIndex = s.family;

@@ -21,6 +21,7 @@ struct RenderOptions {
   int cameraLayout = 0;   // scene.vert's kCameraLayout: which copy of the camera positions the vertices
   bool strippedNames = false;  // the vertex shader without its SPIR-V names (as stripped release shaders)
   int samples = 1;  // the G-buffer's sample count; above 1 the read-back is sample 0 (depth) and the average (normals)
+  bool finalComposite = false;  // after the scene, a draw in the G-buffer pass with depth test and writes off
 };
 
 // The rigid model the P.V.M copy of the camera folds in (world -> the model's frame is its inverse).
