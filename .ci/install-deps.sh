@@ -36,6 +36,7 @@ packages=(
   chromium libxml2-utils     # browser test of the HTML reports (tests/browser/); xmllint checks --junit XML
   python3 python3-renderdoc librenderdoc librenderdoc-dev  # aoreplay import renderdoc; rd_scene (tests/renderdoc/)
   xvfb xauth  # vkcube under xvfb-run, captured through RenderDoc target control (tests/renderdoc/)
+  mesa-utils vkd3d-demos  # glxgears and vkd3d-gears for aoreplay renderdoc-capture (tests/renderdoc/)
   libepoxy-dev libx11-dev libgl1-mesa-dri  # rd_gl_scene (tests/renderdoc/): GL 3.3 core through GLX and libepoxy, on llvmpipe
   clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/
 )

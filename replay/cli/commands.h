@@ -26,6 +26,7 @@ void registerTechniquesCommand(CLI::App& app);
 void registerTechniqueHeaderCommand(CLI::App& app);
 void registerAbCommand(CLI::App& app);
 void registerImportCommand(CLI::App& app);
+void registerRenderDocCaptureCommand(CLI::App& app);
 void registerTuneCommand(CLI::App& app);
 void registerRecordCommand(CLI::App& app);
 void registerTrendCommand(CLI::App& app);

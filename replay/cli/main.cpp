@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   aor::cli::registerTechniqueHeaderCommand(app);
   aor::cli::registerAbCommand(app);
   aor::cli::registerImportCommand(app);
+  aor::cli::registerRenderDocCaptureCommand(app);
   aor::cli::registerTuneCommand(app);
   aor::cli::registerRecordCommand(app);
   aor::cli::registerTrendCommand(app);

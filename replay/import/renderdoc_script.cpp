@@ -43,9 +43,8 @@ std::string tail(const std::string& text, size_t lines = 4) {
   return joined;
 }
 
-std::vector<std::string> scriptArguments(const DumpRequest& r, const fs::path& script) {
-  std::vector<std::string> args = {renderDocPythonInterpreter(), script.string(), r.capture.string(),
-                                   "--out", r.workDir.string(), "--depth", r.depth, "--normals", r.normals};
+std::vector<std::string> scriptArguments(const DumpRequest& r) {
+  std::vector<std::string> args = {r.capture.string(), "--out", r.workDir.string(), "--depth", r.depth, "--normals", r.normals};
   if (r.viewProjection.empty()) args.insert(args.end(), {"--view", r.view, "--projection", r.projection});
   else args.insert(args.end(), {"--view-projection", r.viewProjection});
   if (r.arrayRows) args.push_back("--array-rows");
@@ -83,10 +82,27 @@ std::string renderDocPythonInterpreter() {
   return "python3";
 }
 
+ProcessResult runRenderDocScript(std::string_view text, const std::string& name, const std::vector<std::string>& arguments,
+                                 const std::map<std::string, std::string>& environment, const fs::path& workDir,
+                                 std::chrono::seconds timeLimit) {
+  checkChosenPython(workDir);
+  const fs::path script = workDir / name;
+  std::ofstream(script, std::ios::binary).write(text.data(), std::streamsize(text.size()));
+  std::vector<std::string> argv = {renderDocPythonInterpreter(), script.string()};
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  const ProcessResult p = runProcess(argv, environment, workDir / "script.out", workDir / "script.err", timeLimit);
+  if (!p.started)
+    throw InputError(renderDocPythonInterpreter(), std::nullopt, "",
+                     fmt::format("cannot run Python ({}): the RenderDoc import needs Debian's python3 and "
+                                 "python3-renderdoc (apt-get install python3 python3-renderdoc), or AOREPLAY_PYTHON "
+                                 "naming a Python 3",
+                                 p.startError));
+  return p;
+}
+
+std::string scriptOutputTail(const fs::path& file) { return tail(readWhole(file)); }
+
 nlohmann::json runRenderDocDump(const DumpRequest& r) {
-  checkChosenPython(r.workDir);
-  const fs::path script = r.workDir / "renderdoc_dump.py";
-  std::ofstream(script, std::ios::binary).write(kRenderDocDumpScript.data(), std::streamsize(kRenderDocDumpScript.size()));
   std::map<std::string, std::string> environment;
   if (!r.renderdocPython.empty()) {  // a RenderDoc build's module loads its librenderdoc.so from there
     const char* old = std::getenv("LD_LIBRARY_PATH");
@@ -97,15 +113,10 @@ nlohmann::json runRenderDocDump(const DumpRequest& r) {
   const char* display = std::getenv("DISPLAY");
   const char* platform = std::getenv("EGL_PLATFORM");
   if ((!display || !*display) && (!platform || !*platform)) environment["EGL_PLATFORM"] = "surfaceless";
-  const fs::path out = r.workDir / "script.out", err = r.workDir / "script.err";
-  const ProcessResult p = runProcess(scriptArguments(r, script), environment, out, err, kDumpTimeLimit);
+  const fs::path err = r.workDir / "script.err";
+  const ProcessResult p =
+      runRenderDocScript(kRenderDocDumpScript, "renderdoc_dump.py", scriptArguments(r), environment, r.workDir, kDumpTimeLimit);
   const std::string python = renderDocPythonInterpreter();
-  if (!p.started)
-    throw InputError(python, std::nullopt, "",
-                     fmt::format("cannot run Python ({}): the RenderDoc import needs Debian's python3 and "
-                                 "python3-renderdoc (apt-get install python3 python3-renderdoc), or AOREPLAY_PYTHON "
-                                 "naming a Python 3",
-                                 p.startError));
   if (p.timedOut)
     throw InputError(r.capture.string(), std::nullopt, "",
                      fmt::format("RenderDoc did not finish replaying it within {} s", kDumpTimeLimit.count()));

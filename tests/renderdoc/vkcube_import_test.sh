@@ -1,17 +1,16 @@
 #!/usr/bin/env bash
 # vkcube (Debian's vulkan-tools) knows nothing of RenderDoc or aoreplay: capture one of its frames
-# through RenderDoc's target control under Xvfb, import it, and check that the import finds its
+# with `aoreplay renderdoc-capture` under Xvfb, import it, and check that the import finds its
 # depth, refuses its one combined model-view-projection named as two matrices, and imports it as
 # --view-projection.
 # Usage: vkcube_import_test.sh AOREPLAY WORK_DIR
 set -euo pipefail
 aoreplay=$1 work=$2
-here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAILED: $*"; cat "$work/log" 2>/dev/null; exit 1; }
 
-xvfb-run -a /usr/bin/python3 "$here/target_control_capture.py" --out "$work/vkcube.rdc" -- \
-  vkcube --c 100000 --width 320 --height 180 || fail "capturing vkcube"
+xvfb-run -a "$aoreplay" renderdoc-capture --out "$work/vkcube.rdc" -- vkcube --c 100000 --width 320 --height 180 \
+  || fail "capturing vkcube"
 
 # The only uniform block holds MVP: naming it for both matrices is refused after the depth is found.
 set +e
