@@ -7,12 +7,19 @@ double windowRow(const ApiConventions& c, const RawViewport& v, double ndcY) {
   return double(v.y) + (y + 1.0) * 0.5 * double(v.height);
 }
 
-double windowDepth(const ApiConventions& c, double ndcZ) { return c.clipZMinusOneToOne ? (ndcZ + 1.0) * 0.5 : ndcZ; }
+double windowDepth(const ApiConventions& c, double ndcZ) {
+  const double zeroToOne = c.clipZMinusOneToOne ? (ndcZ + 1.0) * 0.5 : ndcZ;
+  return c.depthRangeMin + (c.depthRangeMax - c.depthRangeMin) * zeroToOne;
+}
 
-glm::mat4 projectionToZeroToOne(const ApiConventions& c, const glm::mat4& projection) {
-  if (!c.clipZMinusOneToOne) return projection;
+glm::mat4 projectionToWindowDepth(const ApiConventions& c, const glm::mat4& projection) {
   glm::mat4 p = projection;
-  for (int column = 0; column < 4; ++column) p[column][2] = (projection[column][2] + projection[column][3]) * 0.5f;
+  if (c.clipZMinusOneToOne)
+    for (int column = 0; column < 4; ++column) p[column][2] = (projection[column][2] + projection[column][3]) * 0.5f;
+  if (c.depthRangeMin == 0.0 && c.depthRangeMax == 1.0) return p;
+  const glm::mat4 zeroToOne = p;
+  const float a = float(c.depthRangeMin), scale = float(c.depthRangeMax - c.depthRangeMin);
+  for (int column = 0; column < 4; ++column) p[column][2] = a * zeroToOne[column][3] + scale * zeroToOne[column][2];
   return p;
 }
 

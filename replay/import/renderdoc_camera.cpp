@@ -156,9 +156,11 @@ ViewportRect viewportRect(float x, float y, float width, float height, float min
   if (x < 0.0f || top < 0.0f || x + width > float(targetWidth) || top + h > float(targetHeight))
     throw ImportProblem("--event", fmt::format("the draw's viewport {} reaches outside the {}x{} depth target", text,
                                                targetWidth, targetHeight));
-  if (minDepth != 0.0f || maxDepth != 1.0f)
-    throw ImportProblem("--event", fmt::format("the draw's viewport maps depth to [{:g}, {:g}]; only [0, 1] is "
-                                               "supported (reversed depth belongs in the projection)",
+  // Any other range is folded into the projection (api_conventions.h); an empty one stores one value.
+  if (!std::isfinite(minDepth) || !std::isfinite(maxDepth) || minDepth == maxDepth || minDepth < 0.0f || minDepth > 1.0f ||
+      maxDepth < 0.0f || maxDepth > 1.0f)
+    throw ImportProblem("--event", fmt::format("the draw's viewport maps depth to [{:g}, {:g}]: every depth it stores "
+                                               "is one value, or outside [0, 1]",
                                                minDepth, maxDepth));
   v.x = int(x), v.y = int(top), v.width = int(width), v.height = int(h);
   return v;

@@ -38,7 +38,7 @@ struct ViewportRect {
   bool flipsY = false;  // negative viewport height: image rows run up NDC y
 };
 // Throws ImportProblem (field --event) for a viewport that is fractional, leaves the target, or
-// maps depth to a range other than [0, 1].
+// maps depth to one value or outside [0, 1] (other ranges are folded into the projection).
 ViewportRect viewportRect(float x, float y, float width, float height, float minDepth, float maxDepth,
                           int targetWidth, int targetHeight);
 

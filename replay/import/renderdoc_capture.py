@@ -180,7 +180,9 @@ def stop(pids):
 
 def capture(rd, args):
     t = rd.TargetControlMessageType
-    WAITING_FOR.update({t.RegisterAPI: "using a graphics API RenderDoc can capture", t.NewCapture: "the capture was written"})
+    WAITING_FOR.update({t.RegisterAPI: "using a graphics API RenderDoc can capture",
+                        t.NewCapture: "the capture was written (a crash while RenderDoc captured? a later frame may "
+                                      "work: --after-frames 300)"})
     WAITING_FOR_VERB.update({t.RegisterAPI: "use a graphics API RenderDoc can capture (is it presenting frames?)",
                              t.NewCapture: "present the frame the capture was triggered for (--after-trigger can "
                                            "make it draw: resize its window, press a key)"})
@@ -203,6 +205,8 @@ def capture(rd, args):
         if not api.supported:
             raise CaptureFailure("PROGRAM", "RenderDoc cannot capture %s's %s: %s"
                                  % (program, api.name, api.supportMessage or "(RenderDoc gave no reason)"))
+        while not api.presenting:  # a trigger before the first present was lost (Qt's Vulkan examples)
+            api = target.next_message(t.RegisterAPI).apiUse
         run_user_command(args.after_register, "--after-register", program)
         time.sleep(args.after_frames / 60.0)
         target.control.TriggerCapture(1)

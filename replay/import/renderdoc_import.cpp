@@ -90,6 +90,8 @@ ApiConventions conventionsOf(const json& dump) {
   conventions.clipZMinusOneToOne = c.at("clip_z") == "-1..1";
   conventions.clipOriginUpperLeft = c.at("clip_y_at_row_0") == "+1";
   conventions.rowsBottomUp = c.at("rows") == "bottom-up";
+  conventions.depthRangeMin = c.at("depth_range").at(0).get<double>();
+  conventions.depthRangeMax = c.at("depth_range").at(1).get<double>();
   return conventions;
 }
 
@@ -258,21 +260,6 @@ std::pair<glm::mat4, glm::mat4> appMatrices(const json& dump, json& scene, std::
   return {view, projection};
 }
 
-ImportedCamera importMatrices(const json& dump, FrameFacts& facts, json& scene, std::FILE* log) {
-  const auto [view, projection] = appMatrices(dump, scene, log);
-  facts.appProjection = projection;
-  facts.appView = view;
-  ImportedCamera camera =
-      importCamera(view, projectionToZeroToOne(facts.applied, projection), captureTopIsClipYUp(facts));
-  if (facts.applied.clipZMinusOneToOne)
-    camera.adjustments.insert(camera.adjustments.begin(), "clip z in [-1, 1]: projection's depth row mapped to [0, 1]");
-  fmt::print(log, "  camera: {}\n", describeProjection(camera.projection));
-  for (const std::string& a : camera.adjustments) fmt::print(log, "  adjusted: {}\n", a);
-  scene["camera"] = describeProjection(camera.projection);
-  scene["adjustments"] = camera.adjustments;
-  return camera;
-}
-
 std::vector<glm::vec4> readCorners(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
@@ -280,6 +267,50 @@ std::vector<glm::vec4> readCorners(const fs::path& file) {
   std::memcpy(corners.data(), bytes.data(), corners.size() * sizeof(glm::vec4));
   return corners;
 }
+
+// GL projections brought to Vulkan often keep their [-1, 1] depth row and remap clip z in the
+// vertex shader (gl_Position.z = (gl_Position.z + gl_Position.w) / 2, as Warzone 2100 does). The
+// draw's own vertices tell: the depth row misses their clip z, and the row so remapped meets it.
+bool vertexShaderRemapsClipZ(const json& dump, const fs::path& folder, const FrameFacts& facts, const glm::mat4& projection) {
+  if (facts.applied.clipZMinusOneToOne || !dump.contains("self_check") || !dump["self_check"].value("possible", false))
+    return false;
+  const std::vector<glm::vec4> corners = readCorners(folder / dump["self_check"].at("file").get<std::string>());
+  ApiConventions gl;
+  gl.clipZMinusOneToOne = true;
+  return depthRowResidual(corners, projection) > kSelfCheckMaxDepthRowResidual &&
+         depthRowResidual(corners, projectionToWindowDepth(gl, projection)) <= kSelfCheckMaxDepthRowResidual;
+}
+
+ImportedCamera importMatrices(const json& dump, const fs::path& folder, FrameFacts& facts, json& scene, std::FILE* log) {
+  auto [view, projection] = appMatrices(dump, scene, log);
+  const bool remapped = vertexShaderRemapsClipZ(dump, folder, facts, projection);
+  if (remapped) {
+    ApiConventions gl;
+    gl.clipZMinusOneToOne = true;
+    projection = projectionToWindowDepth(gl, projection);
+  }
+  facts.appProjection = projection;
+  facts.appView = view;
+  ImportedCamera camera =
+      importCamera(view, projectionToWindowDepth(facts.applied, projection), captureTopIsClipYUp(facts));
+  const ApiConventions& c = facts.applied;
+  if (c.depthRangeMin != 0.0 || c.depthRangeMax != 1.0)
+    camera.adjustments.insert(camera.adjustments.begin(),
+                              fmt::format("viewport depth range [{:g}, {:g}]: folded into the projection's depth row",
+                                          c.depthRangeMin, c.depthRangeMax));
+  if (c.clipZMinusOneToOne)
+    camera.adjustments.insert(camera.adjustments.begin(), "clip z in [-1, 1]: projection's depth row mapped to [0, 1]");
+  if (remapped)
+    camera.adjustments.insert(camera.adjustments.begin(),
+                              "the vertex shader maps clip z from [-1, 1] to [0, 1] itself (the draw's vertices say so): "
+                              "the projection's depth row is mapped the same way");
+  fmt::print(log, "  camera: {}\n", describeProjection(camera.projection));
+  for (const std::string& a : camera.adjustments) fmt::print(log, "  adjusted: {}\n", a);
+  scene["camera"] = describeProjection(camera.projection);
+  scene["adjustments"] = camera.adjustments;
+  return camera;
+}
+
 
 void printSelfCheck(const SelfCheckResult& r, double seconds, std::FILE* log) {
   fmt::print(log,
@@ -384,7 +415,7 @@ ImportedFrame importFrame(const json& dump, const fs::path& file, int index, con
   f.data.gbuffer.width = facts.rect.width;
   f.data.gbuffer.height = facts.rect.height;
   f.data.gbuffer.normals = importNormals(dump, folder, facts, o, s, log);
-  const ImportedCamera camera = importMatrices(dump, facts, s, log);
+  const ImportedCamera camera = importMatrices(dump, folder, facts, s, log);
   if (o.normalsSpace == "view") viewNormalsToWorld(f.data.gbuffer.normals, facts.appView);
   f.data.view = camera.view;
   f.data.projection = camera.projection;

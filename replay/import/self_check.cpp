@@ -31,14 +31,17 @@ bool onScreen(const glm::vec4& c) {
 }
 
 // (a): clip z = P[2][2] z_view + P[3][2], with z_view = w / P[2][3] (P[2][3] is +-1).
+double residualAt(const glm::vec4& c, const glm::mat4& p) {
+  const double zView = double(c.w) / double(p[2][3]);
+  const double predicted = double(p[2][2]) * zView + double(p[3][2]);
+  return std::abs(double(c.z) - predicted) / double(c.w);
+}
+
 void checkDepthRow(const SelfCheckInput& in, SelfCheckResult& out) {
-  const glm::mat4& p = in.appProjection;
   for (const glm::vec4& c : in.corners) {
     if (!onScreen(c)) continue;
     ++out.verticesOnScreen;
-    const double zView = double(c.w) / double(p[2][3]);
-    const double predicted = double(p[2][2]) * zView + double(p[3][2]);
-    out.depthRowResidual = std::max(out.depthRowResidual, std::abs(double(c.z) - predicted) / double(c.w));
+    out.depthRowResidual = std::max(out.depthRowResidual, residualAt(c, in.appProjection));
   }
 }
 
@@ -129,6 +132,13 @@ std::vector<glm::vec4> clipToFront(const glm::vec4* c) {
 }
 
 }  // namespace
+
+double depthRowResidual(const std::vector<glm::vec4>& corners, const glm::mat4& projection) {
+  double largest = 0.0;
+  for (const glm::vec4& c : corners)
+    if (onScreen(c)) largest = std::max(largest, residualAt(c, projection));
+  return largest;
+}
 
 bool SelfCheckResult::depthRowPassed() const { return depthRowResidual <= kSelfCheckMaxDepthRowResidual; }
 

@@ -36,6 +36,9 @@ struct SelfCheckInput {
   glm::dvec2 samplePosition{0.5, 0.5};  // where the depth's sample lies in its pixel (multisampled: not the centre)
 };
 
+// (a) alone: the largest |clip z - P's depth row at that w| / w over the on-screen corners.
+double depthRowResidual(const std::vector<glm::vec4>& corners, const glm::mat4& projection);
+
 struct SelfCheckResult {
   size_t vertices = 0, verticesOnScreen = 0;
   double depthRowResidual = 0.0;  // largest, over the on-screen vertices

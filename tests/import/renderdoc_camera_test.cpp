@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "import/import_problem.h"
+#include "import/api_conventions.h"
 #include "import/renderdoc_camera.h"
 
 namespace aor {
@@ -82,8 +83,31 @@ TEST(RenderDocCamera, ViewportCropsAndRefusesWhatItCannotMap) {
   EXPECT_EQ(flipped.height, 90);
   EXPECT_THROW(viewportRect(0.5f, 0, 100, 100, 0, 1, 320, 180), ImportProblem);
   EXPECT_THROW(viewportRect(0, 0, 400, 100, 0, 1, 320, 180), ImportProblem);
-  EXPECT_NE(problemOf([] { viewportRect(0, 0, 320, 180, 1, 0, 320, 180); }).find("maps depth to [1, 0]"),
+  EXPECT_NO_THROW(viewportRect(0, 0, 320, 180, 1, 0, 320, 180)) << "a reversed range is folded into the projection";
+  EXPECT_NO_THROW(viewportRect(0, 0, 320, 180, 0.1f, 1, 320, 180));
+  EXPECT_NE(problemOf([] { viewportRect(0, 0, 320, 180, 0.5f, 0.5f, 320, 180); }).find("maps depth to [0.5, 0.5]: every "
+                                                                                        "depth it stores is one value"),
             std::string::npos);
+  EXPECT_THROW(viewportRect(0, 0, 320, 180, 0, 2, 320, 180), ImportProblem);
+}
+
+// Issue 45 (Warzone 2100 draws with viewport depth [0.1, 1]): the range folded into the depth row
+// gives every point the window depth the draw stored, for [0, 1] and [-1, 1] clip z alike.
+TEST(RenderDocCamera, AViewportDepthRangeFoldsIntoTheProjection) {
+  const glm::mat4 p = vulkanPerspective();
+  for (bool glClip : {false, true})
+    for (const glm::dvec2 range : {glm::dvec2(0.1, 1.0), glm::dvec2(1.0, 0.0), glm::dvec2(0.25, 0.75)}) {
+      ApiConventions c;
+      c.clipZMinusOneToOne = glClip;
+      c.depthRangeMin = range.x;
+      c.depthRangeMax = range.y;
+      const glm::mat4 folded = projectionToWindowDepth(c, p);
+      for (float z : {-0.2f, -1.0f, -7.5f, -39.0f}) {
+        const glm::vec4 clip = p * glm::vec4(0.3f, -0.2f, z, 1.0f), window = folded * glm::vec4(0.3f, -0.2f, z, 1.0f);
+        EXPECT_NEAR(window.z / window.w, windowDepth(c, clip.z / clip.w), 1e-6) << z;
+        EXPECT_EQ(window.w, clip.w);
+      }
+    }
 }
 
 TEST(RenderDocCamera, ViewSpaceNormalsGoToWorldSpace) {

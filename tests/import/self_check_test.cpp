@@ -71,7 +71,7 @@ Frame glFrame() {
   SelfCheckInput& in = f.input;
   in.conventions = {"OpenGL", true, false, true};
   in.appProjection = glm::perspectiveRH_NO(glm::radians(60.0f), float(kWidth) / float(kHeight), 0.1f, 40.0f);
-  glm::mat4 converted = projectionToZeroToOne(in.conventions, in.appProjection);
+  glm::mat4 converted = projectionToWindowDepth(in.conventions, in.appProjection);
   for (int col = 0; col < 4; ++col) converted[col][1] = -converted[col][1];
   in.captureProjection = converted;
   in.corners.clear();

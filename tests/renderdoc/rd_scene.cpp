@@ -9,10 +9,12 @@
 // Usage: rd_scene --depth-format d16|x8d24|d24s8|d32|d32s8 [--reversed] [--size WxH] [--frames N]
 //                 [--capture-dir DIR] --readback-dir DIR [--validate]
 //                 [--camera separate|combined|model-folded|columns|push-constants] [--stripped-names]
-//                 [--samples N] [--final-composite]
+//                 [--samples N] [--final-composite] [--gl-depth-row] [--depth-range MIN,MAX]
 // --samples renders a multisampled G-buffer; the read-back is then its sample 0 (depth, by a
 // depth resolve) and the average (normals). --final-composite adds a last draw to the G-buffer pass
-// with depth test, depth writes and colour writes off.
+// with depth test, depth writes and colour writes off. --gl-depth-row holds GL's depth row in
+// camera.projection and maps clip z to [0, 1] in the vertex shader (the read-back's projection is
+// the Vulkan one the draw ends up with); --depth-range sets the viewport's depth range.
 // --camera picks which copy of the camera positions the vertices (shaders/scene.vert; all are
 // filled); --stripped-names draws with the vertex shader's SPIR-V names stripped.
 // Without --capture-dir nothing is captured (RenderDoc is not loaded); --validate then runs the
@@ -89,6 +91,10 @@ Options parseOptions(int argc, char** argv) {
       o.render.samples = std::atoi(value().c_str());
       if (o.render.samples != 1 && o.render.samples != 2 && o.render.samples != 4 && o.render.samples != 8)
         usage("--samples is 1, 2, 4 or 8");
+    } else if (a == "--gl-depth-row") {
+      o.render.glDepthRow = true;
+    } else if (a == "--depth-range") {
+      if (std::sscanf(value().c_str(), "%f,%f", &o.render.minDepth, &o.render.maxDepth) != 2) usage("--depth-range is MIN,MAX");
     } else if (a == "--final-composite") {
       o.render.finalComposite = true;
     } else if (a == "--stripped-names") {

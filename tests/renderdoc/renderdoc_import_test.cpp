@@ -269,6 +269,39 @@ TEST(RenderDocImport, TheDefaultEventPassesOverALastDrawWithDepthOff) {
   EXPECT_EQ(std::memcmp(g.depth.data(), depth.data(), depth.size() * sizeof(float)), 0);
 }
 
+// Found on Warzone 2100's Vulkan frames: a GL depth row in the uniform with clip z remapped in the
+// vertex shader (told by the draw's own vertices), and a viewport depth range other than [0, 1]
+// (folded into the projection's depth row). Each imports with the program's depth bit for bit and
+// passes the self-check; the capture's projection is the one the draw effectively used.
+TEST(RenderDocImport, ShaderClipZRemapAndViewportDepthRangesAreFoldedIntoTheProjection) {
+  struct Case {
+    const char* name;
+    const char* options;
+    const char* adjusted;
+    double rangeMin, rangeMax;
+  };
+  for (const Case& c : {Case{"gl-depth-row", "--gl-depth-row", "the vertex shader maps clip z from [-1, 1] to [0, 1] itself", 0, 1},
+                        Case{"depth-range", "--depth-range 0.1,1", "viewport depth range [0.1, 1]: folded into the projection's depth row", 0.1, 1},
+                        Case{"depth-range-reversed", "--depth-range 1,0", "viewport depth range [1, 0]: folded", 1, 0}}) {
+    SCOPED_TRACE(c.name);
+    const fs::path dir = renderScene(c.name, "d32", false, 1, c.options);
+    const Command r = aoreplay(fmt::format("import renderdoc {} --out {} {}", (dir / "captures" / "0000.rdc").string(),
+                                           (dir / "imported").string(), kCamera));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string("adjusted: ") + c.adjusted), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" 0 disagree"), std::string::npos) << r.output;
+    const Capture capture = loadCapture(dir / "imported");
+    const GBuffer g = loadGBuffer(capture, 0);
+    const std::vector<float> depth = readBinary<float>(dir / "readback" / "0000.depth");
+    ASSERT_EQ(g.depth.size(), depth.size());
+    EXPECT_EQ(std::memcmp(g.depth.data(), depth.data(), depth.size() * sizeof(float)), 0) << "depth bit for bit";
+    glm::mat4 expected = matrixOf(readJson(dir / "readback" / "0000.json").at("projection"));
+    for (int column = 0; column < 4; ++column)
+      expected[column][2] = float(c.rangeMin) * expected[column][3] + float(c.rangeMax - c.rangeMin) * expected[column][2];
+    for (int i = 0; i < 16; ++i) EXPECT_NEAR(capture.frames[0].projection[i / 4][i % 4], expected[i / 4][i % 4], 1e-6) << i;
+  }
+}
+
 TEST(RenderDocImport, ImportedFrameReplaysValidated) {
   const fs::path dir = renderScene("replay", "d24s8", false);
   const fs::path capture = dir / "imported";

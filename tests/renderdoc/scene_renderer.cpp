@@ -79,6 +79,8 @@ struct SceneRenderer::State {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
 
+  // Reversed depth, by the projection or by a viewport depth range from 1 to 0 (not both).
+  bool farIsZero() const { return o.reversed != (o.minDepth > o.maxDepth); }
   void createInstance();
   void createDevice();
   uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
@@ -371,8 +373,9 @@ VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDept
   };
   VkShaderModule vert = o.strippedNames ? module(spirv::scene_vert_stripped, spirv::scene_vert_stripped_words)
                                         : module(spirv::scene_vert, spirv::scene_vert_words);
-  const VkSpecializationMapEntry layoutEntry{0, 0, sizeof(int)};
-  const VkSpecializationInfo layoutConstant{1, &layoutEntry, sizeof(int), &o.cameraLayout};
+  const int constants[2] = {o.cameraLayout, o.glDepthRow ? 1 : 0};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(int)}, {1, sizeof(int), sizeof(VkBool32)}};
+  const VkSpecializationInfo layoutConstant{2, entries, sizeof constants, constants};
   VkShaderModule frag = module(spirv::scene_frag, spirv::scene_frag_words);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
@@ -394,7 +397,7 @@ VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDept
   input.pVertexAttributeDescriptions = attributes;
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkViewport viewport{0, 0, float(o.width), float(o.height), 0.0f, 1.0f};
+  VkViewport viewport{0, 0, float(o.width), float(o.height), o.minDepth, o.maxDepth};
   VkRect2D scissor{{0, 0}, {uint32_t(o.width), uint32_t(o.height)}};
   VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   vp.viewportCount = 1;
@@ -410,7 +413,7 @@ VkPipeline SceneRenderer::State::createPipeline(VkRenderPass pass, bool withDept
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = withDepth && !composite;
   ds.depthWriteEnable = withDepth && !composite;
-  ds.depthCompareOp = o.reversed ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+  ds.depthCompareOp = farIsZero() ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState blend{};
   blend.colorWriteMask = composite ? 0 : 0xF;
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -451,8 +454,12 @@ void SceneRenderer::State::label(const char* text, bool begin) {
 }
 
 void SceneRenderer::State::record(const Camera& camera) {
-  // The uniform block: view column-major, projection row-major (as scene.vert declares them).
-  const glm::mat4 projectionRows = glm::transpose(camera.projection);
+  // The uniform block: view column-major, projection row-major (as scene.vert declares them). With
+  // GL's depth row (row2 = 2 row2 - row3), the shader's own remap gives back the Vulkan projection.
+  glm::mat4 held = camera.projection;
+  if (o.glDepthRow)
+    for (int column = 0; column < 4; ++column) held[column][2] = 2.0f * camera.projection[column][2] - camera.projection[column][3];
+  const glm::mat4 projectionRows = glm::transpose(held);
   auto* u = static_cast<uint8_t*>(uniforms.mapped);
   std::memcpy(u, glm::value_ptr(camera.view), 64);
   std::memcpy(u + 64, glm::value_ptr(projectionRows), 64);
@@ -475,7 +482,7 @@ void SceneRenderer::State::record(const Camera& camera) {
   check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
   VkClearValue clears[2];
   clears[0].color = {{0, 0, 0, 0}};
-  clears[1].depthStencil = {o.reversed ? 0.0f : 1.0f, 0};
+  clears[1].depthStencil = {farIsZero() ? 0.0f : 1.0f, 0};
   VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   rp.renderPass = gbufferPass;
   rp.framebuffer = gbufferFramebuffer;

@@ -22,6 +22,8 @@ struct RenderOptions {
   bool strippedNames = false;  // the vertex shader without its SPIR-V names (as stripped release shaders)
   int samples = 1;  // the G-buffer's sample count; above 1 the read-back is sample 0 (depth) and the average (normals)
   bool finalComposite = false;  // after the scene, a draw in the G-buffer pass with depth test and writes off
+  bool glDepthRow = false;      // camera.projection holds GL's depth row; the shader maps clip z to [0, 1]
+  float minDepth = 0.0f, maxDepth = 1.0f;  // the viewport's depth range
 };
 
 // The rigid model the P.V.M copy of the camera folds in (world -> the model's frame is its inverse).

@@ -8,6 +8,9 @@
 // for a camera. light_projection, a spotlight's perspective projection the draw does not use, is
 // a wrong --projection for the self-check tests to name.
 layout(constant_id = 0) const int kCameraLayout = 0;  // 0 separate, 1 P.V, 2 P.V.M, 3 vec4 columns, 4 push constants
+// As OpenGL renderers brought to Vulkan do: the projection's depth row is GL's ([-1, 1]) and the
+// shader maps clip z to [0, 1] itself (rd_scene --gl-depth-row).
+layout(constant_id = 1) const bool kRemapClipZ = false;
 
 layout(set = 0, binding = 0, std140) uniform Camera {
   layout(column_major) mat4 view;
@@ -49,4 +52,5 @@ void main() {
   } else {
     gl_Position = camera.projection * (camera.view * world);
   }
+  if (kRemapClipZ) gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5;
 }
