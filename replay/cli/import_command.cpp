@@ -64,7 +64,9 @@ void registerImportCommand(CLI::App& app) {
   combined->excludes(view)->excludes(projection);
   rd->add_option("--sample", o.sample, "of multisampled depth (and normals), the sample to import (default 0)")
       ->check(wholeIn(0, 63));
-  rd->add_flag("--array-rows", o.arrayRows, "BLOCK.member[I]: the four elements are the matrix's rows (default: its columns)");
+  rd->add_option("--array-matrix", o.arrayMatrix, "BLOCK.member[I]: the four elements are the matrix's columns or its rows")
+      ->check(CLI::IsMember({"columns", "rows"}))
+      ->capture_default_str();
   rd->add_option("--frames-from-dir", args->framesFromDir, "every .rdc in this folder, one frame each");
   rd->add_flag("--no-self-check", o.noSelfCheck,
               "import without checking the frame against the draw's own vertices (capture.json records it)");

@@ -435,7 +435,7 @@ DumpRequest dumpRequest(const RenderDocImportOptions& o, const fs::path& file, c
   r.view = o.view;
   r.projection = o.projection;
   r.viewProjection = o.viewProjection;
-  r.arrayRows = o.arrayRows;
+  r.arrayRows = o.arrayMatrix == "rows";
   r.sample = o.sample;
   r.noSelfCheck = o.noSelfCheck;
   return r;

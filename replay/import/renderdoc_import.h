@@ -26,7 +26,7 @@ struct RenderDocImportOptions {
   std::string normalsSpace = "world";
   std::string view, projection;  // BLOCK.member (or BLOCK.member[I], four vec4 elements)
   std::string viewProjection;    // or one combined matrix, factored (renderdoc_camera.h)
-  bool arrayRows = false;        // BLOCK.member[I]: the elements are the matrix's rows, not its columns
+  std::string arrayMatrix = "columns";  // BLOCK.member[I]: the four elements are its "columns" or "rows"
   int sample = 0;                // of multisampled depth (and normals), the sample imported
   std::string renderdocPython;   // folder of a RenderDoc build's Python module; empty: the installed one
   bool noSelfCheck = false;      // import without checking against the draw's vertices (recorded)

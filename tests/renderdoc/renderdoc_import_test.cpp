@@ -487,6 +487,9 @@ TEST_F(BadInput, ArrayElementsAreCheckedAndTypesNamedInWords) {
                  "its vec4 elements)"});
   expectRefused(dir, fmt::format("{} --view camera.view[0] --projection camera.projection", rdc().string()),
                 {"camera.view[0] is 4 x 4 Float, not an array of vec4"});
+  // Read as rows, the projection's columns make its transpose, which is not a perspective projection.
+  expectRefused(dir, fmt::format("{} --view camera.columns[0] --projection camera.columns[4] --array-matrix rows", rdc().string()),
+                {"field \"--projection\": camera.columns[4] is not a perspective projection"});
   expectRefused(dir, fmt::format("{} --view-projection camera.light_projection", rdc().string()),
                 {"field \"--view-projection\": self-check failed: camera.light_projection does not give the draw's "
                  "vertices their clip-space z"});
