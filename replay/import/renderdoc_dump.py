@@ -369,19 +369,19 @@ def read_matrix(frame, spec, field, array_rows):
             if block.bufferBacked:
                 bound = state.GetConstantBuffer(stage, index, 0)
                 buffer_id, offset, size = bound.resourceId, bound.byteOffset, bound.byteSize
-            else:  # push constants: RenderDoc reads them from the recorded state
+            else:  # push constants (GL: default-block uniforms, $Globals): RenderDoc reads them from the state
                 buffer_id, offset, size = rd.ResourceId.Null(), 0, 0
             contents = frame.controller.GetCBufferVariableContents(
                 state.GetGraphicsPipelineObject(), reflection.resourceId, stage, state.GetShaderEntryPoint(stage),
                 index, buffer_id, offset, size)
             variable = find_member(contents, member_path)
-            kind = "uniform block" if block.bufferBacked else "push-constant block"
+            kind = "uniform block" if block.bufferBacked else unbacked_kind(frame)
             if variable is None:
                 raise ImportFailure(field, "%s %s (%s shader) has no member %s; its members: %s"
                                     % (kind, block_name, stage_name(stage_key), ".".join(member_path), members))
             found = {"block": block_name, "member": ".".join(pieces[1:]), "stage": stage_name(stage_key),
                      "push_constant": not block.bufferBacked,
-                     "buffer": frame.name_of(buffer_id) if block.bufferBacked else "push constants"}
+                     "buffer": frame.name_of(buffer_id) if block.bufferBacked else unbacked_kind(frame)}
             if first is not None:
                 found["rows"] = matrix_from_elements(rd, variable, first, array_rows, spec, field)
                 found["declared_row_major"] = False
@@ -403,6 +403,12 @@ def viewport_of(state):
             "max_depth": v.maxDepth}
 
 
+def unbacked_kind(frame):
+    """What a block without a buffer is in this API: Vulkan's push constants, GL's default-block
+    uniforms (RenderDoc names that block $Globals)."""
+    return "default-block uniforms" if frame.controller.GetPipelineState().IsCaptureGL() else "push constants"
+
+
 def block_listing(frame):
     """The uniform and push-constant blocks of the event's shaders, for messages."""
     rd = frame.rd
@@ -413,7 +419,8 @@ def block_listing(frame):
         for block in (reflection.constantBlocks if reflection else []):
             members = ", ".join("%s (%s)" % (v.name, type_text(v.type)) for v in block.variables)
             listed.append("%s [%s shader%s: %s]" % (block.name, stage_name(stage_key),
-                                                    "" if block.bufferBacked else ", push constants", members))
+                                                    "" if block.bufferBacked else ", " + unbacked_kind(frame),
+                                                    members))
     return "; ".join(listed) or "none"
 
 

@@ -152,7 +152,7 @@ std::string matrixText(const json& m) {
                              : m.at("declared_row_major").get<bool>() ? "row-major"
                                                                       : "column-major";
   return fmt::format("{} ({} shader, {}{})", matrixName(m), m.at("stage").get<std::string>(), layout,
-                     m.at("push_constant").get<bool>() ? ", push constants" : "");
+                     m.at("push_constant").get<bool>() ? ", " + m.at("buffer").get<std::string>() : std::string());
 }
 
 glm::mat4 matrixOf(const json& m) {

@@ -20,13 +20,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One private folder per process, reused for every input (libFuzzer runs inputs one at a time).
+// The private folder of json_fuzz_support.h (removed at exit), reused for every input (libFuzzer
+// runs inputs one at a time).
 const fs::path& captureFolder() {
-  static const fs::path folder = [] {
-    fs::path dir = fs::temp_directory_path() / ("aor-fuzz-" + std::to_string(::getpid()));
-    fs::create_directories(dir / "frames");
-    return dir;
-  }();
+  const fs::path& folder = aor::fuzz::privateFolder().path;
+  static const bool made = fs::create_directories(folder / "frames") || true;
+  (void)made;
   return folder;
 }
 

@@ -15,13 +15,26 @@
 
 namespace aor::fuzz {
 
-// One private file per process and target, rewritten for every input (libFuzzer runs one at a time).
+// One private folder per process, removed when it exits (the regression replays run in every test
+// suite), holding one file per name, rewritten for every input (libFuzzer runs one at a time).
+struct PrivateFolder {
+  std::filesystem::path path;
+  PrivateFolder() : path(std::filesystem::temp_directory_path() / ("aor-fuzz-" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(path);
+  }
+  ~PrivateFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+inline const PrivateFolder& privateFolder() {
+  static const PrivateFolder folder;
+  return folder;
+}
+
 inline std::filesystem::path inputFile(const std::string& name, const uint8_t* data, size_t size) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("aor-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
+  const std::filesystem::path& dir = privateFolder().path;
   const auto path = dir / name;
   std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
   return path;
