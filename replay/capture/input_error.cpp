@@ -7,11 +7,16 @@
 namespace aor {
 namespace {
 
-// The message is always one line: control characters (newlines from library messages, tabs)
-// become spaces.
+// The message is always one line and moves no cursor: control characters (newlines from library
+// messages, tabs, escapes; C1 controls, UTF-8 C2 80..C2 9F) become spaces (capture/plain_text.h
+// names the same set).
 std::string oneLine(std::string s) {
-  for (char& c : s) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  for (size_t i = 0; i < s.size(); ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x20 || c == 0x7f) s[i] = ' ';
+    if (c == 0xc2 && i + 1 < s.size() && static_cast<unsigned char>(s[i + 1]) < 0xa0 &&
+        static_cast<unsigned char>(s[i + 1]) >= 0x80)
+      s[i] = s[i + 1] = ' ';
   }
   return s;
 }

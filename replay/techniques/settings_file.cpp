@@ -7,6 +7,7 @@
 
 #include "capture/input_error.h"
 #include "capture/json_input.h"
+#include "capture/plain_text.h"
 #include "techniques/registry.h"
 
 namespace aor {
@@ -19,13 +20,13 @@ std::string assignmentText(const std::string& file, const std::string& key, cons
   if (value.is_boolean()) return value.get<bool>() ? "1" : "0";
   if (value.is_number_integer()) return fmt::format("{}", value.get<int64_t>());
   if (value.is_number()) return fmt::format("{}", value.get<double>());
-  if (value.is_string()) return value.get<std::string>();
+  if (value.is_string()) return withoutControlCharacters(value.get<std::string>(), file, "set." + key);
   throw InputError(file, std::nullopt, "set." + key, "must be a number, a boolean or an enum choice's name");
 }
 
 std::string stringField(const std::string& file, const json& j, const char* key) {
   if (!j.at(key).is_string()) throw InputError(file, std::nullopt, key, "must be a string");
-  return j.at(key).get<std::string>();
+  return withoutControlCharacters(j.at(key).get<std::string>(), file, key);
 }
 
 void checkHeader(const std::string& file, const json& j) {

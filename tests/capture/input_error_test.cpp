@@ -30,6 +30,13 @@ TEST(InputError, MessageIsOneLine) {
   EXPECT_STREQ(e.what(), "f.exr: line one line two  end");
 }
 
+// Issue 44: no control character reaches the terminal through a message, C1 (U+009B, a CSI in
+// UTF-8 terminals) and escape included; other UTF-8 stays.
+TEST(InputError, MessageMovesNoCursor) {
+  InputError e("s.json", std::nullopt, "k\x1b[31m", "red \xc2\x9b" "31m, \xc2\xa0 \xc3\xa9");
+  EXPECT_STREQ(e.what(), "s.json: field \"k [31m\": red   31m, \xc2\xa0 \xc3\xa9");
+}
+
 TEST(InputError, IsARuntimeError) {
   try {
     throw InputError("f", 1, "g", "h");
