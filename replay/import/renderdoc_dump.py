@@ -393,8 +393,8 @@ def read_matrix(frame, spec, field, array_rows):
             found["declared_row_major"] = bool(variable.RowMajor())
             found["rows"] = [float(x) for x in variable.value.f32v[:16]]
             return found
-    raise ImportFailure(field, "no uniform or push-constant block %s in the shaders at event %s; the blocks there: %s"
-                        % (block_name, frame.current, block_listing(frame)))
+    raise ImportFailure(field, "no uniform block or %s named %s in the shaders at event %s; the blocks there: %s"
+                        % (unbacked_kind(frame), block_name, frame.current, block_listing(frame)))
 
 
 def viewport_of(state):

@@ -422,7 +422,7 @@ TEST_F(BadInput, MissingMemberListsTheMembers) {
 TEST_F(BadInput, MissingBlockListsTheBlocks) {
   const fs::path dir = scratch("missing-block");
   expectRefused(dir, fmt::format("{} --view Camera.view --projection camera.projection", rdc().string()),
-                {fmt::format("field \"--view\": no uniform or push-constant block Camera in the shaders at event {}", kLastGBufferDraw),
+                {fmt::format("field \"--view\": no uniform block or push constants named Camera in the shaders at event {}", kLastGBufferDraw),
                  "the blocks there: camera [vertex shader: view (float4x4)"});
 }
 

@@ -168,6 +168,23 @@ TEST(SelfCheck, TheDefaultEventPassesOverAFinalCompositeToTheScenesLastDraw) {
   EXPECT_EQ(composite.exitCode, 2) << "the composite itself has no camera block: " << composite.output;
 }
 
+// Issue 46 item 2 (first part): GL default-block uniforms, which RenderDoc reflects as the block
+// $Globals without a buffer, are read like push constants and named as what they are. rd_gl_scene's
+// `model` is one (the identity, so as a --view it gives the identity).
+TEST(SelfCheck, GlDefaultBlockUniformsAreRead) {
+  const fs::path dir = renderGlScene(fmt::format("self-check-gl-globals-{}", getpid()), "d32f", "");
+  const Command listing = import(dir, "listing", "--view nosuch.view --projection SceneData.projection");
+  EXPECT_NE(listing.output.find("$Globals [vertex shader, default-block uniforms: model (mat4)]"), std::string::npos)
+      << listing.output;
+  const Command r = import(dir, "imported", "--view '$Globals.model' --projection SceneData.projection");
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("view: $Globals.model (vertex shader, column-major, default-block uniforms)"), std::string::npos)
+      << r.output;
+  const nlohmann::json capture = readJson(dir / "imported" / "capture.json");
+  const nlohmann::json identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  EXPECT_EQ(capture.at("frames").at(0).at("view"), identity);
+}
+
 // Each mistake the import once made on GL frames (README's "The self-check"), made on purpose.
 TEST(SelfCheck, EachGlMistakeIsCaught) {
   const fs::path dir = renderGlScene(fmt::format("self-check-gl-faults-{}", getpid()), "d24s8", "");
