@@ -4,22 +4,10 @@
 #include <cctype>
 #include <utility>
 
+#include "capture/plain_text.h"
+
 namespace aor {
 namespace {
-
-// The message is always one line and moves no cursor: control characters (newlines from library
-// messages, tabs, escapes; C1 controls, UTF-8 C2 80..C2 9F) become spaces (capture/plain_text.h
-// names the same set).
-std::string oneLine(std::string s) {
-  for (size_t i = 0; i < s.size(); ++i) {
-    const auto c = static_cast<unsigned char>(s[i]);
-    if (c < 0x20 || c == 0x7f) s[i] = ' ';
-    if (c == 0xc2 && i + 1 < s.size() && static_cast<unsigned char>(s[i + 1]) < 0xa0 &&
-        static_cast<unsigned char>(s[i + 1]) >= 0x80)
-      s[i] = s[i + 1] = ' ';
-  }
-  return s;
-}
 
 bool endsWithExr(const std::string& file) {
   if (file.size() < 4) return false;
@@ -52,7 +40,8 @@ std::string composeMessage(const std::string& file, const std::optional<int>& fr
     msg += std::string(label) + " \"" + shortened(field, kMaxFieldBytes) + "\": ";
   }
   msg += problem.empty() ? std::string("invalid") : shortened(problem, kMaxProblemBytes);
-  return oneLine(std::move(msg));
+  // One line that moves no cursor: newlines from library messages, tabs, escapes, C1 controls.
+  return controlCharactersBlanked(std::move(msg));
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "capture/plain_text.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
@@ -41,6 +43,15 @@ std::optional<std::string> controlCharacterIn(std::string_view text) {
 
 std::string withoutControlCharacters(std::string text, const std::string& file, const std::string& field) {
   if (auto at = controlCharacterIn(text)) throw InputError(file, std::nullopt, field, fmt::format("{} holds a control character ({})", quoteForMessage(text), *at));
+  return text;
+}
+
+std::string controlCharactersBlanked(std::string text) {
+  for (size_t at = 0; at < text.size();) {
+    const size_t length = std::max<size_t>(1, sequenceLength(text, at));
+    if (controlLength(text, at, length)) text.replace(at, length, length, ' ');
+    at += length;
+  }
   return text;
 }
 

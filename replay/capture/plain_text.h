@@ -16,6 +16,10 @@ std::optional<std::string> controlCharacterIn(std::string_view text);
 // `text`, read from `file`'s `field`; InputError when it holds a control character.
 std::string withoutControlCharacters(std::string text, const std::string& file, const std::string& field);
 
+// `text` with each control character's bytes turned into spaces (one line that moves no cursor:
+// InputError's messages).
+std::string controlCharactersBlanked(std::string text);
+
 // `text` with every control character, and every byte that is not part of valid UTF-8, written as
 // \xNN. `keepLines`: newline and tab are kept (text bound for XML, where they are valid).
 std::string printable(std::string_view text, bool keepLines = false);

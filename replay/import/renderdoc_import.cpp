@@ -64,6 +64,7 @@ struct FrameFacts {
   glm::mat4 appProjection{1.0f};
   glm::mat4 appView{1.0f};  // the application's world -> view (factored when combined)
   glm::dvec2 samplePosition{0.5, 0.5};  // where the imported sample lies in its pixel, rows as the capture's
+  std::vector<glm::vec4> corners;  // the draw's post-vertex-shader clip positions, when the self-check can run
 };
 
 // Where the imported sample of a multisampled depth target lies in its pixel: the standard
@@ -271,24 +272,22 @@ std::vector<glm::vec4> readCorners(const fs::path& file) {
 // GL projections brought to Vulkan often keep their [-1, 1] depth row and remap clip z in the
 // vertex shader (gl_Position.z = (gl_Position.z + gl_Position.w) / 2, as Warzone 2100 does). The
 // draw's own vertices tell: the depth row misses their clip z, and the row so remapped meets it.
-bool vertexShaderRemapsClipZ(const json& dump, const fs::path& folder, const FrameFacts& facts, const glm::mat4& projection) {
-  if (facts.applied.clipZMinusOneToOne || !dump.contains("self_check") || !dump["self_check"].value("possible", false))
-    return false;
-  const std::vector<glm::vec4> corners = readCorners(folder / dump["self_check"].at("file").get<std::string>());
+// Then the projection the draw effectively used, else nullopt.
+std::optional<glm::mat4> remappedInVertexShader(const FrameFacts& facts, const glm::mat4& projection) {
+  if (facts.applied.clipZMinusOneToOne || facts.corners.empty()) return std::nullopt;
   ApiConventions gl;
   gl.clipZMinusOneToOne = true;
-  return depthRowResidual(corners, projection) > kSelfCheckMaxDepthRowResidual &&
-         depthRowResidual(corners, projectionToWindowDepth(gl, projection)) <= kSelfCheckMaxDepthRowResidual;
+  const glm::mat4 remapped = projectionToWindowDepth(gl, projection);
+  if (depthRowResidual(facts.corners, projection) > kSelfCheckMaxDepthRowResidual &&
+      depthRowResidual(facts.corners, remapped) <= kSelfCheckMaxDepthRowResidual)
+    return remapped;
+  return std::nullopt;
 }
 
-ImportedCamera importMatrices(const json& dump, const fs::path& folder, FrameFacts& facts, json& scene, std::FILE* log) {
+ImportedCamera importMatrices(const json& dump, FrameFacts& facts, json& scene, std::FILE* log) {
   auto [view, projection] = appMatrices(dump, scene, log);
-  const bool remapped = vertexShaderRemapsClipZ(dump, folder, facts, projection);
-  if (remapped) {
-    ApiConventions gl;
-    gl.clipZMinusOneToOne = true;
-    projection = projectionToWindowDepth(gl, projection);
-  }
+  const std::optional<glm::mat4> remapped = remappedInVertexShader(facts, projection);
+  if (remapped) projection = *remapped;
   facts.appProjection = projection;
   facts.appView = view;
   ImportedCamera camera =
@@ -360,7 +359,7 @@ void failSelfCheck(const SelfCheckResult& r, const json& dump, const FrameFacts&
 
 // Checks the imported frame against the draw's own vertices (self_check.h); throws when it fails
 // or cannot run, unless --no-self-check.
-void selfCheck(const json& dump, const fs::path& folder, const FrameFacts& facts, const CaptureFrameData& data,
+void selfCheck(const json& dump, const FrameFacts& facts, const CaptureFrameData& data,
                const RenderDocImportOptions& o, json& scene, std::FILE* log) {
   if (o.noSelfCheck) {
     fmt::print(log, "  self-check: skipped (--no-self-check)\n");
@@ -375,7 +374,7 @@ void selfCheck(const json& dump, const fs::path& folder, const FrameFacts& facts
                                     check.at("reason").get<std::string>()));
   const auto start = std::chrono::steady_clock::now();
   SelfCheckInput in;
-  in.corners = readCorners(folder / check.at("file").get<std::string>());
+  in.corners = facts.corners;
   in.conventions = facts.conventions;
   in.viewport = facts.viewport;
   in.rect = facts.rect;
@@ -415,11 +414,13 @@ ImportedFrame importFrame(const json& dump, const fs::path& file, int index, con
   f.data.gbuffer.width = facts.rect.width;
   f.data.gbuffer.height = facts.rect.height;
   f.data.gbuffer.normals = importNormals(dump, folder, facts, o, s, log);
-  const ImportedCamera camera = importMatrices(dump, folder, facts, s, log);
+  if (!o.noSelfCheck && dump.contains("self_check") && dump["self_check"].value("possible", false))  // the camera and the check use them
+    facts.corners = readCorners(folder / dump.at("self_check").at("file").get<std::string>());
+  const ImportedCamera camera = importMatrices(dump, facts, s, log);
   if (o.normalsSpace == "view") viewNormalsToWorld(f.data.gbuffer.normals, facts.appView);
   f.data.view = camera.view;
   f.data.projection = camera.projection;
-  selfCheck(dump, folder, facts, f.data, o, s, log);
+  selfCheck(dump, facts, f.data, o, s, log);
   return f;
 }
 

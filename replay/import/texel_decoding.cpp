@@ -130,10 +130,11 @@ double depthFormatStep(const std::string& format) {
   return 0.0;
 }
 
-std::string supportedDepthFormats(const std::string& api) {
+std::string supportedDepthFormats(const std::string& api, bool multisampled) {
   std::string names;
   for (const DepthLayout& layout : depthLayouts())
-    if (layout.api == api && names.find(layout.name + std::string(",")) == std::string::npos)
+    if (layout.api == api && layout.multisampled == multisampled &&
+        names.find(layout.name + std::string(",")) == std::string::npos)
       names += std::string(layout.name) + ", ";
   return names.empty() ? "none" : names.substr(0, names.size() - 2);
 }
@@ -159,8 +160,8 @@ std::vector<float> decodeDepth(const TexelImage& image, const std::string& api, 
                                                image.bytes.size(), image.width, image.height, api, image.format));
   if (multisampled)
     throw ImportProblem("--depth", fmt::format("multisampled {} {} depth ({} samples) is not supported: RenderDoc's "
-                                               "layout for it is not measured (multisampled: Vulkan {})",
-                                               api, image.format, image.samples, "D16, D24, D24S8, D32, D32S8"));
+                                               "layout for it is not measured (multisampled {}: {})",
+                                               api, image.format, image.samples, api, supportedDepthFormats(api, true)));
   throw ImportProblem("--depth", fmt::format("{} depth format {} is not supported (supported for {}: {})", api,
                                              image.format, api, supportedDepthFormats(api)));
 }

@@ -24,7 +24,7 @@ enum class DepthDecodeFault { None, Unorm24LowBits };
 // format not measured for the API or a size that does not fit its layout.
 std::vector<float> decodeDepth(const TexelImage& image, const std::string& api,
                                DepthDecodeFault fault = DepthDecodeFault::None);
-std::string supportedDepthFormats(const std::string& api);
+std::string supportedDepthFormats(const std::string& api, bool multisampled = false);
 // One step of a unorm depth format (1 / (2^bits - 1)); 0 for float depth.
 double depthFormatStep(const std::string& format);
 

@@ -199,17 +199,23 @@ void checkGl(const char* where) {
   }
 }
 
+// Shaders and programs report their status and log through functions of the same shapes.
+using GetStatus = void (*)(GLuint, GLenum, GLint*);
+using GetLog = void (*)(GLuint, GLsizei, GLsizei*, GLchar*);
+void checkStatus(GLuint object, GLenum status, GetStatus getStatus, GetLog getLog, const char* what) {
+  GLint ok = 0;
+  getStatus(object, status, &ok);
+  if (ok) return;
+  char log[2048];
+  getLog(object, sizeof log, nullptr, log);
+  throw std::runtime_error(std::string(what) + ": " + log);
+}
+
 GLuint compile(GLenum stage, const char* source) {
   const GLuint shader = glCreateShader(stage);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("shader compile: ") + log);
-  }
+  checkStatus(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, "shader compile");
   return shader;
 }
 
@@ -221,13 +227,7 @@ GLuint link(const char* vertex, const char* fragment) {
   glAttachShader(program, vs);
   glAttachShader(program, frag);
   glLinkProgram(program);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("program link: ") + log);
-  }
+  checkStatus(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, "program link");
   glDeleteShader(vs);
   glDeleteShader(frag);
   return program;

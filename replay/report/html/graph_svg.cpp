@@ -16,17 +16,6 @@
 
 namespace aor::html {
 
-// Node lines "  pN [...]" (edge lines "  pN -> rM;" are not counted).
-size_t passNodes(const std::string& dot) {
-  size_t count = 0;
-  for (size_t at = dot.find("\n  p"); at != std::string::npos; at = dot.find("\n  p", at + 1)) {
-    size_t end = at + 4;
-    while (end < dot.size() && std::isdigit(static_cast<unsigned char>(dot[end]))) ++end;
-    count += end > at + 4 && dot.compare(end, 2, " [") == 0;
-  }
-  return count;
-}
-
 namespace {
 
 struct ListedPass {
@@ -53,14 +42,29 @@ std::string labelOf(const std::string& line) {
   return out;
 }
 
+// Where the digits from `at` end (`at` when there are none).
+size_t digitsEnd(const std::string& text, size_t at) {
+  while (at < text.size() && std::isdigit(static_cast<unsigned char>(text[at]))) ++at;
+  return at;
+}
+
 // The number after the prefix letter of a node id ("p12" -> 12), or npos.
 size_t idNumber(const std::string& text, size_t at) {
-  size_t end = at;
-  while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+  const size_t end = digitsEnd(text, at);
   return end == at ? std::string::npos : size_t(std::stoul(text.substr(at, end - at)));
 }
 
 }  // namespace
+
+// Node lines "  pN [...]" (edge lines "  pN -> rM;" are not counted).
+size_t passNodes(const std::string& dot) {
+  size_t count = 0;
+  for (size_t at = dot.find("\n  p"); at != std::string::npos; at = dot.find("\n  p", at + 1)) {
+    const size_t end = digitsEnd(dot, at + 4);
+    count += end > at + 4 && dot.compare(end, 2, " [") == 0;
+  }
+  return count;
+}
 
 std::string passListSvg(const std::string& dot) {
   std::map<size_t, size_t> rowOf;  // pass id -> row

@@ -160,10 +160,6 @@ void checkInterface(const std::vector<uint32_t>& spirv, const UserTechniqueSpec&
 // entry is never blamed on the user's shader.
 constexpr uint64_t kMaxCacheEntryBytes = 64u << 20;
 
-struct CacheMiss {
-  std::string reason;  // empty: no entry
-};
-
 std::vector<uint32_t> validSpirv(std::string_view bytes) {
   if (bytes.empty() || bytes.size() % 4 != 0) throw std::runtime_error("its SPIR-V is not a whole number of words");
   std::vector<uint32_t> code(bytes.size() / 4);
