@@ -1,5 +1,8 @@
 #include "results/sqlite_database.h"
 
+#include <chrono>
+#include <thread>
+
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <sqlite3.h>
 #include <fmt/format.h>
@@ -29,8 +32,21 @@ class SqliteDatabase final : public Database {
   explicit SqliteDatabase(const std::filesystem::path& file)
       : file_(file), db_(file.string(), SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE, kBusyTimeoutMs) {
     // WAL: readers (trend) never block a writer (record) and a killed writer's transaction is
-    // simply not in the log. Setting it waits on the busy timeout like any other lock.
-    db_.exec("PRAGMA journal_mode=WAL");
+    // simply not in the log. While another process switches a new file to WAL, the switch answers
+    // SQLITE_BUSY at once without calling the busy handler (a concurrent `record` on a fresh
+    // store failed so once in six CI runs): it is retried for as long as any lock is waited for.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeoutMs);
+    for (;;) {
+      try {
+        db_.exec("PRAGMA journal_mode=WAL");
+        break;
+      } catch (const SQLite::Exception& e) {
+        if ((e.getErrorCode() != SQLITE_BUSY && e.getErrorCode() != SQLITE_LOCKED) ||
+            std::chrono::steady_clock::now() > deadline)
+          throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    }
     db_.exec("PRAGMA foreign_keys=ON");
   }
   Dialect dialect() const override { return Dialect::Sqlite; }
