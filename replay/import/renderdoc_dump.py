@@ -50,6 +50,7 @@ def parse_arguments():
     p.add_argument("--array-rows", action="store_true")
     p.add_argument("--sample", type=int, default=0)
     p.add_argument("--no-self-check", action="store_true")
+    p.add_argument("--no-display", action="store_true")  # no X display: stop at an OpenGL capture and say so
     return p.parse_args()
 
 
@@ -91,12 +92,15 @@ def version_tuple(text):
     return tuple(parts)
 
 
-def open_replay(rd, path, made_with):
+def incompatible_codes(rd):
+    return (rd.ResultCode.FileIncompatibleVersion, rd.ResultCode.APIIncompatibleVersion)
+
+
+def open_capture_file(rd, path, made_with):
     cap = rd.OpenCaptureFile()
     result = cap.OpenFile(path, "", None)
     installed = rd.GetVersionString()
-    incompatible = (rd.ResultCode.FileIncompatibleVersion, rd.ResultCode.APIIncompatibleVersion)
-    if result.code in incompatible:
+    if result.code in incompatible_codes(rd):
         if version_tuple(made_with) > version_tuple(installed):
             raise ImportFailure("", "made with RenderDoc %s, newer than the installed RenderDoc %s, which cannot open "
                                 "it: give --renderdoc-python DIR of a RenderDoc %s (or newer) build (%s)"
@@ -107,13 +111,18 @@ def open_replay(rd, path, made_with):
         raise ImportFailure("", "RenderDoc %s cannot open it: %s" % (installed, result.Message()))
     if cap.LocalReplaySupport() != rd.ReplaySupport.Supported:
         raise ImportFailure("", "RenderDoc cannot replay this %s capture on this machine" % cap.DriverName())
+    return cap
+
+
+def start_replay(rd, cap, made_with):
+    installed = rd.GetVersionString()
     result, controller = cap.OpenCapture(rd.ReplayOptions(), None)
-    if result.code in incompatible:
+    if result.code in incompatible_codes(rd):
         raise ImportFailure("", "made with RenderDoc %s, which the installed RenderDoc %s cannot replay: %s"
                             % (made_with, installed, result.Message()))
     if result.code != rd.ResultCode.Succeeded:
         raise ImportFailure("", "RenderDoc %s cannot replay it: %s" % (installed, result.Message()))
-    return cap, controller
+    return controller
 
 
 class Frame:
@@ -537,9 +546,14 @@ def dump(args, result):
     rd = import_renderdoc(args.renderdoc_python)
     result["renderdoc"] = rd.GetVersionString()
     rd.InitialiseReplay(rd.GlobalEnvironment(), [])
-    cap, controller = open_replay(rd, args.capture, made_with)
+    cap = open_capture_file(rd, args.capture, made_with)
+    result["api"] = cap.DriverName()
+    if args.no_display and result["api"].startswith("OpenGL"):
+        result["needs_display"] = True  # desktop GL replays through GLX: aoreplay starts an X server
+        cap.Shutdown()
+        return
+    controller = start_replay(rd, cap, made_with)
     try:
-        result["api"] = cap.DriverName()
         frame = Frame(rd, controller)
         depth_id = None if args.depth == "auto" else frame.find_texture(args.depth, "--depth")
         action, markers, why = choose_event(frame, args, depth_id)

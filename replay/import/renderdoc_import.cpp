@@ -141,7 +141,7 @@ std::vector<float> cropToCapture(const std::vector<float>& values, int width, in
 }
 
 std::string resourceText(const json& entry) {
-  return fmt::format("{} (id {}), {} {}x{}", entry.at("resource").get<std::string>(), entry.at("id").get<int>(),
+  return fmt::format("{} (id {}), {} {}x{}", entry.at("resource").get<std::string>(), entry.at("id").get<uint64_t>(),
                      entry.at("format").at("name").get<std::string>(), entry.at("width").get<int>(),
                      entry.at("height").get<int>());
 }
@@ -166,8 +166,9 @@ void printEvent(const json& dump, const fs::path& file, int index, std::FILE* lo
   const json& e = dump.at("event");
   std::string passes;
   for (const auto& p : e.at("passes")) passes += (passes.empty() ? " in " : " > ") + p.get<std::string>();
-  fmt::print(log, "frame {}: {} (RenderDoc {}, {})\n  event {} {}{}: {}\n", index, file.string(),
-             dump.at("made_with").get<std::string>(), dump.at("api").get<std::string>(), e.at("id").get<int>(),
+  const std::string where = dump.contains("replayed_on") ? ", replayed on " + dump["replayed_on"].get<std::string>() : "";
+  fmt::print(log, "frame {}: {} (RenderDoc {}, {}{})\n  event {} {}{}: {}\n", index, file.string(),
+             dump.at("made_with").get<std::string>(), dump.at("api").get<std::string>(), where, e.at("id").get<int>(),
              e.at("name").get<std::string>(), passes, e.at("why").get<std::string>());
 }
 

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "capture/input_error.h"
+#include "import/private_display.h"
 #include "import/subprocess.h"
 
 namespace aor {
@@ -102,21 +103,20 @@ ProcessResult runRenderDocScript(std::string_view text, const std::string& name,
 
 std::string scriptOutputTail(const fs::path& file) { return tail(readWhole(file)); }
 
-nlohmann::json runRenderDocDump(const DumpRequest& r) {
-  std::map<std::string, std::string> environment;
-  if (!r.renderdocPython.empty()) {  // a RenderDoc build's module loads its librenderdoc.so from there
-    const char* old = std::getenv("LD_LIBRARY_PATH");
-    environment["LD_LIBRARY_PATH"] = r.renderdocPython + (old && *old ? std::string(":") + old : "");
-  }
-  // Without an X display RenderDoc 1.24 replays OpenGL through EGL only on Mesa's surfaceless
-  // platform; a display, or a platform the user chose, is left alone.
-  const char* display = std::getenv("DISPLAY");
-  const char* platform = std::getenv("EGL_PLATFORM");
-  if ((!display || !*display) && (!platform || !*platform)) environment["EGL_PLATFORM"] = "surfaceless";
+namespace {
+
+bool unset(const char* name) {
+  const char* value = std::getenv(name);
+  return !value || !*value;
+}
+
+nlohmann::json runDumpScript(const DumpRequest& r, const std::map<std::string, std::string>& environment,
+                             bool noDisplay) {
+  std::vector<std::string> arguments = scriptArguments(r);
+  if (noDisplay) arguments.push_back("--no-display");
   const fs::path err = r.workDir / "script.err";
   const ProcessResult p =
-      runRenderDocScript(kRenderDocDumpScript, "renderdoc_dump.py", scriptArguments(r), environment, r.workDir, kDumpTimeLimit);
-  const std::string python = renderDocPythonInterpreter();
+      runRenderDocScript(kRenderDocDumpScript, "renderdoc_dump.py", arguments, environment, r.workDir, kDumpTimeLimit);
   if (p.timedOut)
     throw InputError(r.capture.string(), std::nullopt, "",
                      fmt::format("RenderDoc did not finish replaying it within {} s", kDumpTimeLimit.count()));
@@ -125,13 +125,34 @@ nlohmann::json runRenderDocDump(const DumpRequest& r) {
                      fmt::format("RenderDoc crashed replaying it (signal {}); its last output: {}", p.signal,
                                  tail(readWhole(err))));
   if (p.exitCode != 0 || !fs::exists(r.workDir / "dump.json"))
-    throw std::runtime_error(fmt::format("the RenderDoc dump script ({}) failed on {} (exit {}): {}", python,
-                                         r.capture.string(), p.exitCode, tail(readWhole(err))));
+    throw std::runtime_error(fmt::format("the RenderDoc dump script ({}) failed on {} (exit {}): {}",
+                                         renderDocPythonInterpreter(), r.capture.string(), p.exitCode,
+                                         tail(readWhole(err))));
   try {
     return nlohmann::json::parse(readWhole(r.workDir / "dump.json"));
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(fmt::format("the RenderDoc dump script wrote malformed JSON: {}", e.what()));
   }
+}
+
+}  // namespace
+
+nlohmann::json runRenderDocDump(const DumpRequest& r) {
+  std::map<std::string, std::string> environment;
+  if (!r.renderdocPython.empty()) {  // a RenderDoc build's module loads its librenderdoc.so from there
+    const char* old = std::getenv("LD_LIBRARY_PATH");
+    environment["LD_LIBRARY_PATH"] = r.renderdocPython + (old && *old ? std::string(":") + old : "");
+  }
+  // RenderDoc 1.24 replays desktop OpenGL through GLX. Without a display (and without an EGL
+  // platform the user chose) the script stops at a GL capture, and it runs again on a private one.
+  const bool noDisplay = unset("DISPLAY") && unset("EGL_PLATFORM");
+  nlohmann::json dump = runDumpScript(r, environment, noDisplay);
+  if (!dump.value("needs_display", false)) return dump;
+  const PrivateDisplay display(r.capture, r.workDir / "xvfb.log");
+  environment["DISPLAY"] = display.name();
+  dump = runDumpScript(r, environment, false);
+  dump["replayed_on"] = "a private X display (Xvfb " + display.name() + ")";
+  return dump;
 }
 
 }  // namespace aor

@@ -47,51 +47,64 @@ namespace {
 
 }  // namespace
 
-ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
-                         const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
-                         std::chrono::seconds timeLimit) {
-  ProcessResult result;
+SpawnedProcess spawnProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
+                            const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile) {
+  SpawnedProcess spawned;
   int errorPipe[2];
   if (argv.empty() || ::pipe2(errorPipe, O_CLOEXEC) != 0) {
-    result.startError = argv.empty() ? "no program" : std::strerror(errno);
-    return result;
+    spawned.startError = argv.empty() ? "no program" : std::strerror(errno);
+    return spawned;
   }
   const pid_t pid = ::fork();
   if (pid < 0) {
-    result.startError = std::strerror(errno);
+    spawned.startError = std::strerror(errno);
     ::close(errorPipe[0]);
     ::close(errorPipe[1]);
-    return result;
+    return spawned;
   }
   if (pid == 0) execChild(argv, environment, stdoutFile, stderrFile, errorPipe[1]);
   ::close(errorPipe[1]);
   int execErrno = 0;
   const bool execFailed = ::read(errorPipe[0], &execErrno, sizeof execErrno) == sizeof execErrno;
   ::close(errorPipe[0]);
+  if (execFailed) {
+    ::waitpid(pid, nullptr, 0);
+    spawned.startError = std::strerror(execErrno);
+    spawned.startErrno = execErrno;
+    return spawned;
+  }
+  spawned.pid = pid;
+  return spawned;
+}
 
+ProcessResult waitForProcess(int pid, std::chrono::milliseconds timeLimit) {
+  ProcessResult result;
+  result.started = true;
   const auto deadline = std::chrono::steady_clock::now() + timeLimit;
   int status = 0;
   while (true) {
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
     if (done == pid) break;
-    if (done < 0 && errno != EINTR) break;
+    if (done < 0 && errno != EINTR) return result;
     if (std::chrono::steady_clock::now() > deadline) {
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
-      result.started = !execFailed;
       result.timedOut = true;
       return result;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  if (execFailed) {
-    result.startError = std::strerror(execErrno);
-    return result;
-  }
-  result.started = true;
   if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   return result;
+}
+
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
+                         const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
+                         std::chrono::seconds timeLimit) {
+  const SpawnedProcess spawned = spawnProcess(argv, environment, stdoutFile, stderrFile);
+  if (spawned.pid < 0) return {.startError = spawned.startError};
+  return waitForProcess(spawned.pid, timeLimit);
 }
 
 }  // namespace aor

@@ -25,4 +25,17 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<st
                          const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
                          std::chrono::seconds timeLimit);
 
+// The same start without waiting: the child's pid, or -1 with startError (and its errno) when it
+// could not be executed. Descriptors without FD_CLOEXEC are inherited.
+struct SpawnedProcess {
+  int pid = -1;
+  std::string startError;
+  int startErrno = 0;
+};
+SpawnedProcess spawnProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
+                            const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile);
+
+// Waits for a spawned child; past `timeLimit` kills it (SIGKILL) and sets `timedOut`.
+ProcessResult waitForProcess(int pid, std::chrono::milliseconds timeLimit);
+
 }  // namespace aor

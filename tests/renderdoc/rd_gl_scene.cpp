@@ -9,11 +9,17 @@
 //   READBACK_DIR/NNNN.json      width, height, depth format, clip_control, reversed, view and
 //                               projection (column-major, exactly what was uploaded)
 // Usage: rd_gl_scene --depth-format d16|d24|d24s8|d32f|d32fs8 [--clip-control] [--reversed] [--last-draw-points] [--final-copy]
+//                    [--camera ubo|globals|combined] [--default-framebuffer | --post-process]
 //                    [--size WxH] [--frames N] [--capture-dir DIR] --readback-dir DIR
 // Projection: by default GL's own conventions (clip z in [-1, 1], y up, glm::perspectiveRH_NO);
 // --clip-control calls glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE) and uploads scene.h's
 // [0, 1], y-down projection, so the picture stays upright; --reversed (only with --clip-control)
 // reverses depth (clear 0, GL_GREATER). A stencil aspect is cleared to 0xA5 and left alone.
+// --camera: where the vertex shader finds the camera (shaders/gl_scene.vert): a uniform block
+// (default), default-block uniforms view and projection, or one default-block view_projection.
+// --default-framebuffer draws the scene into the window's own framebuffer (D24S8, the only depth
+// a GLX visual offers here) instead of the FBO; --post-process follows the scene with a pass that
+// samples the FBO's normal target into the window, as an engine's tone mapping does.
 //
 // RenderDoc hooks OpenGL by interposing the GLX entry points and dlopen, so librenderdoc.so must
 // be in the process before libepoxy opens libGL: with --capture-dir the program re-executes
@@ -74,6 +80,8 @@ struct Options {
   bool clipControl = false, reversed = false;
   bool lastDrawPoints = false;  // the last box drawn as points: a draw the self-check cannot follow
   bool finalCopy = false;       // a full-screen draw after the scene, depth test and writes off
+  std::string camera = "ubo";
+  bool defaultFramebuffer = false, postProcess = false;
   int width = 160, height = 90, frames = 1;
   fs::path captureDir, readbackDir;
 };
@@ -100,6 +108,13 @@ Options parseOptions(int argc, char** argv) {
       o.lastDrawPoints = true;
     } else if (a == "--final-copy") {
       o.finalCopy = true;
+    } else if (a == "--camera") {
+      o.camera = value();
+      if (o.camera != "ubo" && o.camera != "globals" && o.camera != "combined") usage("unknown --camera " + o.camera);
+    } else if (a == "--default-framebuffer") {
+      o.defaultFramebuffer = true;
+    } else if (a == "--post-process") {
+      o.postProcess = true;
     } else if (a == "--reversed") {
       o.reversed = true;
     } else if (a == "--size") {
@@ -118,6 +133,8 @@ Options parseOptions(int argc, char** argv) {
   if (o.readbackDir.empty()) usage("--readback-dir is required");
   if (o.frames < 1 || o.width < 1 || o.height < 1) usage("bad --frames or --size");
   if (o.reversed && !o.clipControl) usage("--reversed needs --clip-control (depth in [0, 1])");
+  if (o.defaultFramebuffer && o.depthFormatName != "d24s8") usage("--default-framebuffer is d24s8");
+  if (o.defaultFramebuffer && o.postProcess) usage("--post-process reads the FBO: not with --default-framebuffer");
   return o;
 }
 
@@ -143,14 +160,15 @@ RENDERDOC_API_1_6_0* preloadRenderDoc(char** argv) {
   return api;
 }
 
-// A GL 3.3 core profile context on an (unmapped) X window; the scene goes into an FBO anyway.
+// A GL 3.3 core profile context on an X window of the frame's size, mapped (its own framebuffer
+// has D24S8 depth for --default-framebuffer).
 struct GlContext {
   Display* display = nullptr;
   Window window = 0;
   Colormap colormap = 0;
   GLXContext context = nullptr;
 
-  GlContext() {
+  explicit GlContext(const Options& o) {
     display = XOpenDisplay(nullptr);
     if (!display) throw std::runtime_error("cannot open the X display (headless: run under xvfb-run -a)");
     const int screen = DefaultScreen(display);
@@ -158,7 +176,7 @@ struct GlContext {
       throw std::runtime_error("GLX_ARB_create_context_profile is missing");
     const int fbAttributes[] = {GLX_X_RENDERABLE, True, GLX_DRAWABLE_TYPE, GLX_WINDOW_BIT, GLX_RENDER_TYPE,
                                 GLX_RGBA_BIT, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8,
-                                GLX_DOUBLEBUFFER, True, 0};
+                                GLX_DOUBLEBUFFER, True, GLX_DEPTH_SIZE, 24, GLX_STENCIL_SIZE, 8, 0};
     int count = 0;
     GLXFBConfig* configs = glXChooseFBConfig(display, screen, fbAttributes, &count);
     if (!configs || count == 0) throw std::runtime_error("no suitable GLXFBConfig");
@@ -169,9 +187,12 @@ struct GlContext {
     XSetWindowAttributes attributes{};
     colormap = XCreateColormap(display, RootWindow(display, screen), visual->visual, AllocNone);
     attributes.colormap = colormap;
-    window = XCreateWindow(display, RootWindow(display, screen), 0, 0, 64, 64, 0, visual->depth, InputOutput,
-                           visual->visual, CWColormap, &attributes);
+    attributes.event_mask = StructureNotifyMask;
+    window = XCreateWindow(display, RootWindow(display, screen), 0, 0, unsigned(o.width), unsigned(o.height), 0,
+                           visual->depth, InputOutput, visual->visual, CWColormap | CWEventMask, &attributes);
     XFree(visual);
+    XMapWindow(display, window);
+    for (XEvent event; event.type != MapNotify;) XNextEvent(display, &event);
     const int contextAttributes[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
                                      GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, 0};
     context = glXCreateContextAttribsARB(display, config, nullptr, True, contextAttributes);
@@ -221,8 +242,11 @@ GLuint compile(GLenum stage, const char* source) {
 
 constexpr GLint kClearStencil = 0xA5;
 
-GLuint link(const char* vertex, const char* fragment) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex), frag = compile(GL_FRAGMENT_SHADER, fragment);
+// The vertex shader with `define` (one line, may be empty) put after its #version line.
+GLuint link(const std::string& vertex, const char* fragment, const std::string& define = "") {
+  std::string source = vertex;
+  source.insert(source.find('\n') + 1, define);
+  const GLuint vs = compile(GL_VERTEX_SHADER, source.c_str()), frag = compile(GL_FRAGMENT_SHADER, fragment);
   const GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, frag);
@@ -243,20 +267,46 @@ out vec4 colour;
 void main() { colour = vec4(0.0, 0.0, 1.0, 1.0); }
 )glsl";
 
+// --post-process: the FBO's normals (texture unit 0) to the window, remapped to [0, 1].
+constexpr const char* kPostFrag = R"glsl(#version 330 core
+uniform sampler2D sceneNormals;
+out vec4 colour;
+void main() { colour = vec4(texelFetch(sceneNormals, ivec2(gl_FragCoord.xy), 0).xyz * 0.5 + 0.5, 1.0); }
+)glsl";
+
+GLint uniformLocation(GLuint program, const char* name) {
+  const GLint location = glGetUniformLocation(program, name);
+  if (location < 0) throw std::runtime_error(std::string("no uniform ") + name);
+  return location;
+}
+
 struct SceneGl {
-  GLuint program = 0, copyProgram = 0, vao = 0, vertexBuffer = 0, uniformBuffer = 0;
+  GLuint program = 0, copyProgram = 0, postProgram = 0, vao = 0, vertexBuffer = 0, uniformBuffer = 0;
   GLuint framebuffer = 0, normalTexture = 0, depthTexture = 0;
-  GLint modelLocation = -1;
+  GLint modelLocation = -1, viewLocation = -1, projectionLocation = -1, viewProjectionLocation = -1;
   std::vector<uint32_t> firstVertex;
 
+  void findCamera(const Options& o) {
+    if (o.camera == "globals") {
+      viewLocation = uniformLocation(program, "view");
+      projectionLocation = uniformLocation(program, "projection");
+    } else if (o.camera == "combined") {
+      viewProjectionLocation = uniformLocation(program, "view_projection");
+    } else {
+      const GLuint block = glGetUniformBlockIndex(program, "SceneData");
+      if (block == GL_INVALID_INDEX) throw std::runtime_error("no uniform block SceneData");
+      glUniformBlockBinding(program, block, 0);
+    }
+    modelLocation = uniformLocation(program, "model");
+  }
+
   SceneGl(const Options& o) {
-    program = link(kGlSceneVert, kGlSceneFrag);
+    const std::string define = o.camera == "globals" ? "#define CAMERA_GLOBALS\n"
+                               : o.camera == "combined" ? "#define CAMERA_COMBINED\n" : "";
+    program = link(kGlSceneVert, kGlSceneFrag, define);
     if (o.finalCopy) copyProgram = link(kCopyVert, kCopyFrag);
-    const GLuint block = glGetUniformBlockIndex(program, "SceneData");
-    if (block == GL_INVALID_INDEX) throw std::runtime_error("no uniform block SceneData");
-    glUniformBlockBinding(program, block, 0);
-    modelLocation = glGetUniformLocation(program, "model");
-    if (modelLocation < 0) throw std::runtime_error("no uniform model");
+    if (o.postProcess) postProgram = link(kCopyVert, kPostFrag);
+    findCamera(o);
 
     const SceneMesh mesh = sceneMesh();
     firstVertex = mesh.firstVertex;
@@ -312,8 +362,8 @@ struct SceneGl {
     const glm::mat4 light = glm::perspectiveRH_NO(glm::radians(90.0f), 1.0f, 0.5f, 20.0f);
     glBufferSubData(GL_UNIFORM_BUFFER, 2 * sizeof(glm::mat4), sizeof(glm::mat4), glm::value_ptr(light));
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, uniformBuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    const GLenum drawBuffer = GL_COLOR_ATTACHMENT0;
+    glBindFramebuffer(GL_FRAMEBUFFER, o.defaultFramebuffer ? 0 : framebuffer);
+    const GLenum drawBuffer = o.defaultFramebuffer ? GL_BACK : GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &drawBuffer);
     glViewport(0, 0, o.width, o.height);
     glDepthRange(0.0, 1.0);
@@ -329,6 +379,7 @@ struct SceneGl {
     else
       glClearBufferfv(GL_DEPTH, 0, &clearDepth);
     glUseProgram(program);
+    uploadCamera(camera);
     glBindVertexArray(vao);
     const glm::mat4 model(1.0f);
     for (size_t object = 0; object + 1 < firstVertex.size(); ++object) {
@@ -342,19 +393,42 @@ struct SceneGl {
       glUseProgram(copyProgram);
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    if (postProgram) postProcess();
     glBindVertexArray(0);
     glFinish();
     checkGl("rendering the frame");
+  }
+
+  // The default-block camera of --camera globals and combined (the uniform block is filled anyway).
+  void uploadCamera(const Camera& camera) {
+    if (viewLocation >= 0) glUniformMatrix4fv(viewLocation, 1, GL_FALSE, glm::value_ptr(camera.view));
+    if (projectionLocation >= 0) glUniformMatrix4fv(projectionLocation, 1, GL_FALSE, glm::value_ptr(camera.projection));
+    if (viewProjectionLocation >= 0)
+      glUniformMatrix4fv(viewProjectionLocation, 1, GL_FALSE, glm::value_ptr(camera.projection * camera.view));
+  }
+
+  // The window's framebuffer gets the FBO's normals: a full-screen triangle, no depth test.
+  void postProcess() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDrawBuffer(GL_BACK);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, normalTexture);
+    glUseProgram(postProgram);
+    glUniform1i(uniformLocation(postProgram, "sceneNormals"), 0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTexture(GL_TEXTURE_2D, 0);
   }
 
   // GL's row order: row 0 is window y 0 (the bottom).
   void readBack(const Options& o, std::vector<float>& depth, std::vector<uint16_t>& normalsHalf) {
     depth.assign(size_t(o.width) * size_t(o.height), 0.0f);
     normalsHalf.assign(size_t(o.width) * size_t(o.height) * 4, 0);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, o.defaultFramebuffer ? 0 : framebuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, o.width, o.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadBuffer(o.defaultFramebuffer ? GL_BACK : GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, o.width, o.height, GL_RGBA, GL_HALF_FLOAT, normalsHalf.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     checkGl("reading the frame back");
@@ -384,7 +458,7 @@ int main(int argc, char** argv) {
       fs::create_directories(o.captureDir);
       api->SetCaptureFilePathTemplate((o.captureDir / "rd_gl_scene").c_str());
     }
-    GlContext gl;
+    GlContext gl(o);
     SceneGl scene(o);
     for (int frame = 0; frame < o.frames; ++frame) {
       const Camera camera = glCamera(o, frame);
@@ -400,6 +474,7 @@ int main(int argc, char** argv) {
       std::vector<float> depth;
       std::vector<uint16_t> normalsHalf;
       scene.readBack(o, depth, normalsHalf);
+      glXSwapBuffers(gl.display, gl.window);
       writeBinary(o.readbackDir / (std::string(stem) + ".depth"), depth);
       writeBinary(o.readbackDir / (std::string(stem) + ".normals"), normalsHalf);
       nlohmann::json meta = {{"width", o.width},
@@ -407,6 +482,9 @@ int main(int argc, char** argv) {
                              {"depth_format", o.depthFormatName},
                              {"clip_control", o.clipControl},
                              {"reversed", o.reversed},
+                             {"camera", o.camera},
+                             {"default_framebuffer", o.defaultFramebuffer},
+                             {"post_process", o.postProcess},
                              {"view", matrixJson(camera.view)},
                              {"projection", matrixJson(camera.projection)}};
       std::ofstream(o.readbackDir / (std::string(stem) + ".json")) << meta.dump(2) << "\n";

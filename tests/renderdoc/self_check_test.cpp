@@ -27,9 +27,14 @@ fs::path renderGlScene(const std::string& name, const std::string& format, const
   return dir;
 }
 
-Command import(const fs::path& sceneDir, const std::string& out, const std::string& arguments) {
+// Without a display, as on a CI runner: GL frames replay on the import's private Xvfb.
+const char* kHeadless = "env -u DISPLAY -u EGL_PLATFORM";
+
+Command import(const fs::path& sceneDir, const std::string& out, const std::string& arguments,
+               const std::string& environment = kHeadless) {
   return aoreplay(fmt::format("import renderdoc {} --out {} {}", (sceneDir / "captures" / "0000.rdc").string(),
-                              (sceneDir / out).string(), arguments));
+                              (sceneDir / out).string(), arguments),
+                  environment);
 }
 
 nlohmann::json selfCheckOf(const fs::path& capture) {
@@ -105,17 +110,11 @@ void expectSameAsVulkan(const GBuffer& gl, const GBuffer& vk, double quantum) {
   EXPECT_LE(differ, compared / 100) << differ << " of " << compared << " pixels differ from the Vulkan frame's";
 }
 
-TEST_P(GlFrame, ImportsUprightInTheCaptureConventionAndPassesTheCheck) {
-  const GlCase& c = GetParam();
-  const std::string name = fmt::format("self-check-gl-{}-{}{}", c.format, c.mode[0] ? "clip-control" : "default",
-                                       c.reversed ? "-reversed" : "");
-  const fs::path dir = renderGlScene(name, c.format, c.mode);
-  const Command r = import(dir, "imported", kGlCamera);
-  expectPassed(r, dir / "imported");
-  EXPECT_NE(r.output.find("OpenGL"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("rows bottom-up, flipped"), std::string::npos) << r.output;
-
-  const Capture capture = loadCapture(dir / "imported");
+// The imported frame against rd_gl_scene's own read-back: depth within half a quantum of
+// glReadPixels' (rows turned top-down), the view within `viewTolerance` of scene.h's (0: bit for
+// bit) and the projection scene.h's Vulkan one ([0, 1], y down).
+void expectLikeReadBack(const fs::path& dir, const Capture& capture, double quantum, bool reversed,
+                        float viewTolerance = 0.0f) {
   const GBuffer g = loadGBuffer(capture, 0);
   const std::vector<float> readBack = readBinary<float>(dir / "readback" / "0000.depth");  // GL rows: bottom first
   ASSERT_EQ(g.depth.size(), readBack.size());
@@ -124,16 +123,34 @@ TEST_P(GlFrame, ImportsUprightInTheCaptureConventionAndPassesTheCheck) {
     for (int x = 0; x < kWidth; ++x)
       worst = std::max(worst, std::abs(double(g.depth[size_t(y * kWidth + x)]) -
                                        double(readBack[size_t((kHeight - 1 - y) * kWidth + x)])));
-  EXPECT_LE(worst, c.quantum * 0.5 + 1e-7) << "the imported depth is glReadPixels' with its rows turned top-down";
+  EXPECT_LE(worst, quantum * 0.5 + 1e-7) << "the imported depth is glReadPixels' with its rows turned top-down";
 
-  // The camera: scene.h's view bit for bit, and its Vulkan projection ([0, 1], y down).
-  const Camera camera = sceneCamera(0, kWidth, kHeight, c.reversed);
-  EXPECT_TRUE(sameBits(capture.frames[0].view, camera.view));
+  const Camera camera = sceneCamera(0, kWidth, kHeight, reversed);
+  if (viewTolerance == 0.0f) {
+    EXPECT_TRUE(sameBits(capture.frames[0].view, camera.view));
+  }
   for (int col = 0; col < 4; ++col)
-    for (int row = 0; row < 4; ++row)
+    for (int row = 0; row < 4; ++row) {
+      EXPECT_NEAR(capture.frames[0].view[col][row], camera.view[col][row], viewTolerance) << "view[" << col << "][" << row << "]";
       EXPECT_NEAR(capture.frames[0].projection[col][row], camera.projection[col][row],
-                  1e-6 * std::abs(camera.projection[col][row]))
+                  std::max(1e-6 * std::abs(camera.projection[col][row]), double(viewTolerance)))
           << "projection[" << col << "][" << row << "]";
+    }
+}
+
+TEST_P(GlFrame, ImportsUprightInTheCaptureConventionAndPassesTheCheck) {
+  const GlCase& c = GetParam();
+  const std::string name = fmt::format("self-check-gl-{}-{}{}", c.format, c.mode[0] ? "clip-control" : "default",
+                                       c.reversed ? "-reversed" : "");
+  const fs::path dir = renderGlScene(name, c.format, c.mode);
+  const Command r = import(dir, "imported", kGlCamera);
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("OpenGL, replayed on a private X display (Xvfb :"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rows bottom-up, flipped"), std::string::npos) << r.output;
+
+  const Capture capture = loadCapture(dir / "imported");
+  expectLikeReadBack(dir, capture, c.quantum, c.reversed);
+  const GBuffer g = loadGBuffer(capture, 0);
 
   const fs::path vk = renderScene(name + "-vulkan", c.vulkanFormat, c.reversed);
   const Command v = import(vk, "imported", kVulkanCamera);
@@ -198,6 +215,86 @@ TEST(SelfCheck, EachGlMistakeIsCaught) {
   const fs::path upperLeft = renderGlScene(fmt::format("self-check-gl-clip-control-{}", getpid()), "d32f",
                                            "--clip-control");
   expectCaught(import(upperLeft, "rows", fault + "rows"), upperLeft / "rows", {disagrees, "(flipped: no)"});
+}
+
+// Issue 46: a GL 3.3 core frame as engines make them, imported with no display: the camera in
+// default-block uniforms ($Globals), the scene in a D24S8 FBO, a post-processing pass into the
+// window after it, with GL's clip conventions and with glClipControl(GL_UPPER_LEFT,
+// GL_ZERO_TO_ONE); the capture then replays under the validation layer without a message.
+class GlGlobalsCamera : public ::testing::TestWithParam<bool> {};
+
+TEST_P(GlGlobalsCamera, ImportsHeadlessLikeTheProgramsReadBackAndReplaysValidated) {
+  const bool clipControl = GetParam();
+  const fs::path dir = renderGlScene(fmt::format("gl-globals-post-{}-{}", clipControl, getpid()), "d24s8",
+                                     std::string("--camera globals --post-process") + (clipControl ? " --clip-control" : ""));
+  const Command r = import(dir, "imported", "--view '$Globals.view' --projection '$Globals.projection'");
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("OpenGL, replayed on a private X display (Xvfb :"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(1 later draw with depth test or writes off passed over)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("D24S8 160x90"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("adjusted: clip z in [-1, 1]") == std::string::npos, clipControl) << r.output;
+  expectLikeReadBack(dir, loadCapture(dir / "imported"), 1.0 / 16777215, false);
+
+  const Command replay = aoreplay(fmt::format("run {} --validate --no-images --out {}", (dir / "imported").string(),
+                                              (dir / "run").string()),
+                                  kHeadless);
+  EXPECT_EQ(replay.exitCode, 0) << replay.output;
+  EXPECT_NE(replay.output.find("validation: 0 messages"), std::string::npos) << replay.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(ClipConventions, GlGlobalsCamera, ::testing::Bool(),
+                         [](const auto& info) { return info.param ? "clip_control_upper_left_zero_to_one" : "gl_default"; });
+
+// One default-block view_projection, factored as a Vulkan program's is (--view-projection).
+TEST(SelfCheck, GlCombinedViewProjectionIsFactored) {
+  const fs::path dir = renderGlScene(fmt::format("gl-combined-{}", getpid()), "d32f", "--camera combined --post-process");
+  const Command r = import(dir, "imported", "--view-projection '$Globals.view_projection'");
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("view-projection: $Globals.view_projection (vertex shader, column-major, default-block "
+                          "uniforms): factored into a perspective projection and a rigid view"),
+            std::string::npos)
+      << r.output;
+  expectLikeReadBack(dir, loadCapture(dir / "imported"), 6e-8, false, 2e-6f);
+}
+
+// The window's own depth (GLX's D24S8 back buffer), named with its whole 64-bit resource id
+// (it was printed cut to 32 bits, as a negative number).
+TEST(SelfCheck, GlDefaultFramebufferDepthImports) {
+  const fs::path dir = renderGlScene(fmt::format("gl-default-framebuffer-{}", getpid()), "d24s8", "--default-framebuffer");
+  const Command r = import(dir, "imported", kGlCamera);
+  expectPassed(r, dir / "imported");
+  const nlohmann::json depth = readJson(dir / "imported" / "capture.json").at("scene").at("frames").at(0).at("depth");
+  ASSERT_TRUE(depth.at("id").is_number_unsigned()) << depth;
+  EXPECT_GT(depth.at("id").get<uint64_t>(), uint64_t(UINT32_MAX)) << "RenderDoc's back-buffer ids are above 2^32";
+  EXPECT_NE(r.output.find(fmt::format("depth: {} (id {}), D24S8 160x90", depth.at("resource").get<std::string>(),
+                                      depth.at("id").get<uint64_t>())),
+            std::string::npos)
+      << r.output;
+  expectLikeReadBack(dir, loadCapture(dir / "imported"), 1.0 / 16777215, false);
+}
+
+// Without a display and without Xvfb: exit 2 naming the package, nothing at --out. An Xvfb that
+// does not come up: its own words, exit 1 (the machine, not the capture), nothing at --out.
+TEST(SelfCheck, GlWithoutDisplayOrXvfbSaysWhatToInstall) {
+  const fs::path dir = renderGlScene(fmt::format("gl-no-xvfb-{}", getpid()), "d32f", "");
+  const fs::path bin = dir / "bin";
+  fs::create_directories(bin);
+  const Command missing = import(dir, "missing", kGlCamera, fmt::format("{} PATH={}", kHeadless, bin.string()));
+  EXPECT_EQ(missing.exitCode, 2) << missing.output;
+  EXPECT_NE(missing.output.find("0000.rdc: an OpenGL capture replays on an X display, DISPLAY is unset and Xvfb is not "
+                                "installed: install Debian's xvfb (apt-get install xvfb)"),
+            std::string::npos)
+      << missing.output;
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+  std::ofstream(bin / "Xvfb") << "#!/bin/sh\necho 'Fatal server error: no screens found' >&2\nexit 1\n";
+  fs::permissions(bin / "Xvfb", fs::perms::owner_all);
+  const Command broken = import(dir, "broken", kGlCamera, fmt::format("{} PATH={}:/usr/bin:/bin", kHeadless, bin.string()));
+  EXPECT_EQ(broken.exitCode, 1) << broken.output;
+  EXPECT_NE(broken.output.find("Xvfb did not start a display (it has 10 s); its last output: Fatal server error: no "
+                               "screens found"),
+            std::string::npos)
+      << broken.output;
+  EXPECT_FALSE(fs::exists(dir / "broken"));
 }
 
 }  // namespace
