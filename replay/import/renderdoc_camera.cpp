@@ -180,12 +180,17 @@ ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, 
   return c;
 }
 
-std::string describeProjection(const glm::mat4& p) {
+std::string describeProjection(const glm::mat4& p, double depthA, double depthB) {
   const bool reversed = p[3][2] > 0.0f;
   const double p22 = p[2][2], p32 = p[3][2];
-  // d = (P22 z + P32) / -z: standard depth has d = 0 at the near plane, reversed d = 1 there.
-  const double nearPlane = reversed ? p32 / (1.0 + p22) : p32 / p22;
-  const double farPlane = reversed ? (p22 == 0.0 ? INFINITY : p32 / p22) : (p22 == -1.0 ? INFINITY : p32 / (1.0 + p22));
+  // Window depth at view distance t: d = P32 / t - P22, so t = P32 / (d + P22); the near and far
+  // planes are where d reaches the ends of the depth range the projection maps to.
+  auto distance = [&](double d) {
+    const double t = d + p22 == 0.0 ? INFINITY : p32 / (d + p22);
+    return t < 0.0 ? INFINITY : t;
+  };
+  const double nearPlane = std::min(distance(depthA), distance(depthB));
+  const double farPlane = std::max(distance(depthA), distance(depthB));
   const double fov = 2.0 * std::atan(1.0 / std::abs(double(p[1][1]))) * 180.0 / M_PI;
   return fmt::format("perspective, {} depth, near {:.4g}, far {:.4g}, vertical field of view {:.1f} degrees",
                      reversed ? "reversed" : "standard", nearPlane, farPlane, fov);

@@ -52,8 +52,10 @@ struct ImportedCamera {
 // instead. Both are exact negations.
 ImportedCamera importCamera(const glm::mat4& view, const glm::mat4& projection, bool clipYUpAtTopRow);
 
-// "perspective, standard depth, near 0.1, far 40, vertical field of view 60.0 degrees".
-std::string describeProjection(const glm::mat4& projection);
+// "perspective, standard depth, near 0.1, far 40, vertical field of view 60.0 degrees": the
+// planes where the projection's window depth reaches depthA and depthB (a viewport depth range
+// folded into it: its ends).
+std::string describeProjection(const glm::mat4& projection, double depthA = 0.0, double depthB = 1.0);
 
 // World-space normals from view-space ones of the application's `view` (normals transform with
 // the inverse transpose; world from view is therefore view's 3x3 transposed), renormalised.

@@ -304,9 +304,10 @@ ImportedCamera importMatrices(const json& dump, FrameFacts& facts, json& scene, 
     camera.adjustments.insert(camera.adjustments.begin(),
                               "the vertex shader maps clip z from [-1, 1] to [0, 1] itself (the draw's vertices say so): "
                               "the projection's depth row is mapped the same way");
-  fmt::print(log, "  camera: {}\n", describeProjection(camera.projection));
+  const std::string described = describeProjection(camera.projection, c.depthRangeMin, c.depthRangeMax);
+  fmt::print(log, "  camera: {}\n", described);
   for (const std::string& a : camera.adjustments) fmt::print(log, "  adjusted: {}\n", a);
-  scene["camera"] = describeProjection(camera.projection);
+  scene["camera"] = described;
   scene["adjustments"] = camera.adjustments;
   return camera;
 }

@@ -127,5 +127,19 @@ TEST(RenderDocCamera, DescribesTheProjection) {
             "perspective, standard depth, near 0.1, far 40, vertical field of view 60.0 degrees");
 }
 
+// A viewport depth range folded into the projection (Warzone 2100's [0.1, 1], reversed [1, 0])
+// leaves the camera's near and far planes where they were (they read 0.067 and -0.2 before).
+TEST(RenderDocCamera, DescribesTheCameraNotTheFoldedRange) {
+  for (const auto& [a, b] : {std::pair{0.25, 0.75}, std::pair{0.1, 1.0}, std::pair{1.0, 0.0}, std::pair{0.9, 0.1}}) {
+    ApiConventions c;
+    c.depthRangeMin = a;
+    c.depthRangeMax = b;
+    const std::string reversed = a > b ? "reversed" : "standard";
+    EXPECT_EQ(describeProjection(projectionToWindowDepth(c, vulkanPerspective()), a, b),
+              "perspective, " + reversed + " depth, near 0.1, far 40, vertical field of view 60.0 degrees")
+        << a << ", " << b;
+  }
+}
+
 }  // namespace
 }  // namespace aor

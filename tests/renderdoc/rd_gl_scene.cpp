@@ -9,7 +9,7 @@
 //   READBACK_DIR/NNNN.json      width, height, depth format, clip_control, reversed, view and
 //                               projection (column-major, exactly what was uploaded)
 // Usage: rd_gl_scene --depth-format d16|d24|d24s8|d32f|d32fs8 [--clip-control] [--reversed] [--last-draw-points] [--final-copy]
-//                    [--camera ubo|globals|combined] [--default-framebuffer | --post-process]
+//                    [--camera ubo|globals|combined] [--default-framebuffer | --post-process] [--depth-range N,F]
 //                    [--size WxH] [--frames N] [--capture-dir DIR] --readback-dir DIR
 // Projection: by default GL's own conventions (clip z in [-1, 1], y up, glm::perspectiveRH_NO);
 // --clip-control calls glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE) and uploads scene.h's
@@ -20,6 +20,8 @@
 // --default-framebuffer draws the scene into the window's own framebuffer (D24S8, the only depth
 // a GLX visual offers here) instead of the FBO; --post-process follows the scene with a pass that
 // samples the FBO's normal target into the window, as an engine's tone mapping does.
+// --depth-range calls glDepthRange(N, F) for the scene (default 0, 1); N > F reverses depth
+// (clear 0, GL_GREATER) as --reversed does.
 //
 // RenderDoc hooks OpenGL by interposing the GLX entry points and dlopen, so librenderdoc.so must
 // be in the process before libepoxy opens libGL: with --capture-dir the program re-executes
@@ -82,6 +84,7 @@ struct Options {
   bool finalCopy = false;       // a full-screen draw after the scene, depth test and writes off
   std::string camera = "ubo";
   bool defaultFramebuffer = false, postProcess = false;
+  double depthNear = 0.0, depthFar = 1.0;
   int width = 160, height = 90, frames = 1;
   fs::path captureDir, readbackDir;
 };
@@ -113,6 +116,8 @@ Options parseOptions(int argc, char** argv) {
       if (o.camera != "ubo" && o.camera != "globals" && o.camera != "combined") usage("unknown --camera " + o.camera);
     } else if (a == "--default-framebuffer") {
       o.defaultFramebuffer = true;
+    } else if (a == "--depth-range") {
+      if (std::sscanf(value().c_str(), "%lf,%lf", &o.depthNear, &o.depthFar) != 2) usage("--depth-range is N,F");
     } else if (a == "--post-process") {
       o.postProcess = true;
     } else if (a == "--reversed") {
@@ -366,14 +371,15 @@ struct SceneGl {
     const GLenum drawBuffer = o.defaultFramebuffer ? GL_BACK : GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &drawBuffer);
     glViewport(0, 0, o.width, o.height);
-    glDepthRange(0.0, 1.0);
+    glDepthRange(o.depthNear, o.depthFar);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
-    glDepthFunc(o.reversed ? GL_GREATER : GL_LESS);
+    const bool nearIsGreater = o.reversed || o.depthNear > o.depthFar;  // reversed by clip control or by range
+    glDepthFunc(nearIsGreater ? GL_GREATER : GL_LESS);
     glDisable(GL_CULL_FACE);
     const GLfloat clearNormal[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, clearNormal);
-    const GLfloat clearDepth = o.reversed ? 0.0f : 1.0f;
+    const GLfloat clearDepth = nearIsGreater ? 0.0f : 1.0f;
     if (d.stencil)  // a stencil value whose bits cannot pass for depth's (nothing tests stencil)
       glClearBufferfi(GL_DEPTH_STENCIL, 0, clearDepth, kClearStencil);
     else
@@ -485,6 +491,7 @@ int main(int argc, char** argv) {
                              {"camera", o.camera},
                              {"default_framebuffer", o.defaultFramebuffer},
                              {"post_process", o.postProcess},
+                             {"depth_range", {o.depthNear, o.depthFar}},
                              {"view", matrixJson(camera.view)},
                              {"projection", matrixJson(camera.projection)}};
       std::ofstream(o.readbackDir / (std::string(stem) + ".json")) << meta.dump(2) << "\n";

@@ -113,8 +113,7 @@ void expectSameAsVulkan(const GBuffer& gl, const GBuffer& vk, double quantum) {
 // The imported frame against rd_gl_scene's own read-back: depth within half a quantum of
 // glReadPixels' (rows turned top-down), the view within `viewTolerance` of scene.h's (0: bit for
 // bit) and the projection scene.h's Vulkan one ([0, 1], y down).
-void expectLikeReadBack(const fs::path& dir, const Capture& capture, double quantum, bool reversed,
-                        float viewTolerance = 0.0f) {
+void expectDepthLikeReadBack(const fs::path& dir, const Capture& capture, double quantum) {
   const GBuffer g = loadGBuffer(capture, 0);
   const std::vector<float> readBack = readBinary<float>(dir / "readback" / "0000.depth");  // GL rows: bottom first
   ASSERT_EQ(g.depth.size(), readBack.size());
@@ -124,7 +123,11 @@ void expectLikeReadBack(const fs::path& dir, const Capture& capture, double quan
       worst = std::max(worst, std::abs(double(g.depth[size_t(y * kWidth + x)]) -
                                        double(readBack[size_t((kHeight - 1 - y) * kWidth + x)])));
   EXPECT_LE(worst, quantum * 0.5 + 1e-7) << "the imported depth is glReadPixels' with its rows turned top-down";
+}
 
+void expectLikeReadBack(const fs::path& dir, const Capture& capture, double quantum, bool reversed,
+                        float viewTolerance = 0.0f) {
+  expectDepthLikeReadBack(dir, capture, quantum);
   const Camera camera = sceneCamera(0, kWidth, kHeight, reversed);
   if (viewTolerance == 0.0f) {
     EXPECT_TRUE(sameBits(capture.frames[0].view, camera.view));
@@ -271,6 +274,26 @@ TEST(SelfCheck, GlDefaultFramebufferDepthImports) {
             std::string::npos)
       << r.output;
   expectLikeReadBack(dir, loadCapture(dir / "imported"), 1.0 / 16777215, false);
+}
+
+// glDepthRange folded into the projection: the depth as drawn, the camera described as it is
+// (near 0.1, far 40), and [1, 0] (reversed by range) as scene.h's reversed projection.
+TEST(SelfCheck, GlDepthRangesAreFoldedIntoTheProjection) {
+  const fs::path dir = renderGlScene(fmt::format("gl-depth-range-{}", getpid()), "d24s8", "--depth-range 0.25,0.75");
+  const Command r = import(dir, "imported", kGlCamera);
+  expectPassed(r, dir / "imported");
+  EXPECT_NE(r.output.find("camera: perspective, standard depth, near 0.1, far 40,"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("adjusted: viewport depth range [0.25, 0.75]: folded into the projection's depth row"),
+            std::string::npos)
+      << r.output;
+  expectDepthLikeReadBack(dir, loadCapture(dir / "imported"), 1.0 / 16777215);
+
+  const fs::path reversed = renderGlScene(fmt::format("gl-depth-range-reversed-{}", getpid()), "d32f", "--depth-range 1,0");
+  const Command rr = import(reversed, "imported", kGlCamera);
+  expectPassed(rr, reversed / "imported");
+  EXPECT_NE(rr.output.find("camera: perspective, reversed depth, near 0.1, far 40,"), std::string::npos) << rr.output;
+  // One float rounding of terms near 1 in the folded depth row: 1e-8 off its 0.0025 entry.
+  expectLikeReadBack(reversed, loadCapture(reversed / "imported"), 6e-8, true, 1e-7f);
 }
 
 // Without a display and without Xvfb: exit 2 naming the package, nothing at --out. An Xvfb that
