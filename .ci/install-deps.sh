@@ -37,6 +37,7 @@ packages=(
   python3 python3-renderdoc librenderdoc librenderdoc-dev  # aoreplay import renderdoc; rd_scene (tests/renderdoc/)
   xvfb xauth  # vkcube under xvfb-run, captured through RenderDoc target control (tests/renderdoc/)
   mesa-utils vkd3d-demos  # glxgears and vkd3d-gears for aoreplay renderdoc-capture (tests/renderdoc/)
+  godot3 qtbase5-examples  # OpenGL-core programs the import is tested on (tests/renderdoc/gl_programs_import_test.sh)
   libepoxy-dev libx11-dev libgl1-mesa-dri  # rd_gl_scene (tests/renderdoc/): GL 3.3 core through GLX and libepoxy, on llvmpipe
   clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/
 )
