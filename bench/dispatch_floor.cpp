@@ -19,7 +19,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "options/number.h"
 #include "options/size.h"
 #include "shaders/dispatch_floor.h"

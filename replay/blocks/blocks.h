@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "graph/render_graph.h"
-#include "techniques/frame_builder.h"
+#include "technique_api/frame_builder.h"
 #include "vk/resources.h"
 
 namespace aor::blocks {

@@ -3,10 +3,10 @@
 #include "blocks/blocks.h"
 #include "blocks/camera.h"
 #include "blocks/linearize_depth.h"
-#include "blocks/pass_names.h"
+#include "core/pass_names.h"
 #include "blocks/reconstruct_normals.h"
 #include "blocks/view_normals.h"
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 
 namespace aor::blocks {
 namespace {

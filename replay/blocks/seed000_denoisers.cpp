@@ -3,7 +3,7 @@
 #include "blocks/blocks.h"
 #include "blocks/spatial_denoise.h"
 #include "blocks/temporal_denoise.h"
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 
 namespace aor::blocks {
 namespace {

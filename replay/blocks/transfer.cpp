@@ -2,8 +2,8 @@
 // passes in the graph, so their barriers are derived like every other pass's and their time shows
 // up in the report.
 #include "blocks/blocks.h"
-#include "blocks/pass_names.h"
-#include "graph/pass_context.h"
+#include "core/pass_names.h"
+#include "runtime/pass_context.h"
 
 namespace aor::blocks {
 namespace {

@@ -24,8 +24,8 @@
 
 #include "capture/exr_detail.h"
 #include "capture/image_io.h"
-#include "capture/json_input.h"
-#include "report/output_directory.h"
+#include "core/json_input.h"
+#include "core/output_directory.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -713,7 +713,7 @@ void writeCapture(const fs::path& folder, int width, int height, const std::vect
   if (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
   if (target.empty() || target == "." || target == ".." || !target.has_filename())
     throw std::invalid_argument("writeCapture: invalid folder " + folder.string());
-  // The rules of every output folder (report/output_directory.h): only an earlier capture is
+  // The rules of every output folder (core/output_directory.h): only an earlier capture is
   // replaced, one writer at a time, and the folder is the old capture or the new one at any moment.
   OutputDirectory out(target, ResultKind::Capture);
   writeCaptureFiles(out.staging(), width, height, frames, scene, geometry);

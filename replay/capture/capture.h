@@ -10,8 +10,8 @@
 #include <glm/mat4x4.hpp>
 #include <nlohmann/json.hpp>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 #include "capture/obj_geometry.h"
 
 namespace aor {
@@ -21,7 +21,7 @@ inline constexpr int kMaxCaptureFrames = 100'000;
 // capture.json holds at most kMaxCaptureFrames frames (and no array longer than that) in at most
 // 256 MiB: a capture of 10^5 frames as writeCapture writes it is about 100 MB.
 inline constexpr JsonLimits kCaptureJsonLimits{std::uint64_t(256) << 20, kMaxCaptureFrames, 128};
-// scene.ao_radius must lie in the range of the `radius` setting it becomes (techniques/parameters.cpp;
+// scene.ao_radius must lie in the range of the `radius` setting it becomes (technique_api/parameters.cpp;
 // tests/pipeline checks that the two agree).
 inline constexpr double kMinAoRadius = 1e-6;
 inline constexpr double kMaxAoRadius = 1e7;
@@ -68,7 +68,7 @@ std::optional<std::vector<float>> loadReference(const Capture& capture, int fram
 CaptureGeometry loadGeometry(const Capture& capture);
 
 // Writing, used by the generator. writeCapture replaces `folder` by the rules of every output
-// folder (report/output_directory.h): files go to a staging folder swapped in only when
+// folder (core/output_directory.h): files go to a staging folder swapped in only when
 // everything was written, and only an earlier capture is ever replaced.
 struct CaptureFrameData {
   GBuffer gbuffer;

@@ -1,9 +1,7 @@
 #pragma once
 // A capture's identity for the results store (aoreplay record): the SHA-256 of its content, so a
 // capture copied to another machine or folder keeps its series, and an edited one gets a new one.
-#include <filesystem>
 #include <string>
-#include <string_view>
 
 #include "capture/capture.h"
 
@@ -13,14 +11,5 @@ namespace aor {
 // references) and its geometry, in path order, each as its path relative to the capture folder, its size and its
 // bytes. Throws std::runtime_error naming a file that cannot be read.
 std::string captureContentSha256(const Capture& capture);
-
-// Lower-case hex SHA-256 of a file's bytes.
-std::string fileSha256(const std::filesystem::path& path);
-
-// Lower-case hex SHA-256 of text.
-std::string textSha256(std::string_view text);
-
-// The version this aoreplay reports (report.json's tool_version, result markers).
-const char* aoreplayVersion();
 
 }  // namespace aor

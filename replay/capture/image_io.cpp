@@ -36,7 +36,7 @@
 #include <png.h>
 
 #include "capture/exr_detail.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace fs = std::filesystem;
 

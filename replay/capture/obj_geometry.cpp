@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor {
 namespace {

@@ -13,14 +13,14 @@
 #include <fmt/format.h>
 
 #include "capture/capture.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "cli/commands.h"
 #include "cli/compare_command.h"
 #include "report/html/compare_page.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
 #include "import/subprocess.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 
 namespace aor::cli {
 namespace {

@@ -2,7 +2,7 @@
 // Subcommands of aoreplay. Each register* adds its options; runSelected dispatches.
 #include <CLI/CLI.hpp>
 
-#include "techniques/technique.h"
+#include "technique_api/technique.h"
 
 namespace aor::cli {
 
@@ -32,7 +32,7 @@ void registerRecordCommand(CLI::App& app);
 void registerTrendCommand(CLI::App& app);
 void registerExportCommand(CLI::App& app);
 // Every value of every option and argument of every command, refused when empty or holding a
-// control character (capture/plain_text.h): after all commands are registered.
+// control character (core/plain_text.h): after all commands are registered.
 void checkEveryValue(CLI::App& app);
 int runSelected(CLI::App& app);
 

@@ -8,14 +8,14 @@
 #include <fmt/format.h>
 #include <re2/re2.h>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
 #include "report/html/compare_page.h"
 #include "report/junit.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 
 namespace aor::cli {
 namespace {

@@ -5,11 +5,11 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/results_options.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 #include "results/exports.h"
 #include "results/schema.h"
 

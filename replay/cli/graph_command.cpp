@@ -10,7 +10,7 @@
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
 #include "techniques/frame_graph.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 #include "vk/context.h"
 
 namespace aor::cli {

@@ -6,7 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "cli/number_options.h"
 #include "import/renderdoc_import.h"
 

@@ -7,11 +7,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "cli/commands.h"
 #include "cli/settings_options.h"
 #include "cli/version.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 #include "techniques/registry.h"
 #include "vk/vk_check.h"
 

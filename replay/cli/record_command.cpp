@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"

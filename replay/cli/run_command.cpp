@@ -20,7 +20,7 @@
 #include "report/expectations.h"
 #include "report/html/run_page.h"
 #include "report/junit.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 #include "report/run_outputs.h"
 #include "report/run_summary.h"
 #include "report/temporal_plot.h"

@@ -1,13 +1,13 @@
 #pragma once
 // Options shared by commands that take a capture and a technique's settings (run, graph), and the
-// help text of a technique's keys: both read the technique's declarations (techniques/technique.h).
+// help text of a technique's keys: both read the technique's declarations (technique_api/technique.h).
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "capture/capture.h"
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 #include "techniques/settings_file.h"
 
 namespace aor::cli {

@@ -18,9 +18,9 @@
 #include "techniques/registry.h"
 #include "techniques/settings_file.h"
 #include "report/html/sweep_page.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 #include "report/run_outputs.h"
-#include "report/stats.h"
+#include "core/stats.h"
 #include "report/sweep.h"
 #include "vk/context.h"
 

@@ -17,7 +17,7 @@
 #include "metrics/error_metrics.h"
 #include "pipeline/analyzed_output.h"
 #include "pipeline/replayer.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 #include "report/pipeline_time.h"
 #include "report/run_outputs.h"
 #include "report/tune_report.h"

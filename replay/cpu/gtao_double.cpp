@@ -9,7 +9,7 @@
 #include "cpu/gtao_double_kernel.h"
 #include "gtao/gtao.h"
 #include "metrics/depth.h"
-#include "metrics/percentile.h"
+#include "core/percentile.h"
 
 namespace aor {
 namespace {

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "generator/generator_internal.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 
 namespace aor::gen {
 namespace {

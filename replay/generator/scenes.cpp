@@ -11,7 +11,7 @@
 #include <glm/gtc/constants.hpp>
 #include <tiny_obj_loader.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "generator/generator_internal.h"
 
 namespace aor::gen {

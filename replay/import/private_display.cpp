@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "import/subprocess.h"
 
 namespace aor {

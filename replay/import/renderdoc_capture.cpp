@@ -7,10 +7,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 #include "import/renderdoc_script.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 
 namespace aor {
 

@@ -11,14 +11,14 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "import/api_conventions.h"
 #include "import/import_problem.h"
 #include "import/renderdoc_camera.h"
 #include "import/renderdoc_script.h"
 #include "import/self_check.h"
 #include "import/texel_decoding.h"
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 
 namespace aor {
 

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "import/private_display.h"
 #include "import/subprocess.h"
 

@@ -8,7 +8,7 @@
 #include "metrics/depth.h"
 #include "metrics/flip.h"
 #include "metrics/halo_band.h"
-#include "metrics/percentile.h"
+#include "core/percentile.h"
 
 namespace aor {
 namespace {

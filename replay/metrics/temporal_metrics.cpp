@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "metrics/parallel_rows.h"
+#include "core/parallel_rows.h"
 #include "metrics/temporal_response.h"
 
 namespace aor {

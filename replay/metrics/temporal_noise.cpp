@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "metrics/parallel_rows.h"
-#include "metrics/percentile.h"
+#include "core/parallel_rows.h"
+#include "core/percentile.h"
 
 namespace aor {
 

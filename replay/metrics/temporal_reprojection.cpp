@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "metrics/depth.h"
-#include "metrics/parallel_rows.h"
+#include "core/parallel_rows.h"
 #include "blocks/temporal_denoise.h"
 
 namespace aor {

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor {
 namespace {

@@ -1,7 +1,7 @@
 #include "pipeline/analyzed_output.h"
 
 #include "metrics/halo_band.h"
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

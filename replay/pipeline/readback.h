@@ -7,7 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "techniques/frame_builder.h"
+#include "technique_api/frame_builder.h"
 
 namespace aor {
 

@@ -12,11 +12,11 @@
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
 
-#include "graph/executor.h"
+#include "runtime/executor.h"
 #include "vk/vk_check.h"
-#include "graph/physical_resources.h"
-#include "metrics/parallel_rows.h"
-#include "report/graph_json.h"
+#include "runtime/physical_resources.h"
+#include "core/parallel_rows.h"
+#include "graph/graph_json.h"
 #include "techniques/frame_graph.h"
 
 namespace aor {

@@ -2,7 +2,7 @@
 // The replay loop: decode a frame's G-buffer (one frame ahead, on a worker thread), upload it, run
 // the frame's compiled render graph `warmup + repeat` times with timestamps, read the result back,
 // and decide history validity for the next frame. Outputs go to a FrameSink. Which passes run is
-// the technique's (techniques/technique.h); this loop is the same for every technique.
+// the technique's (technique_api/technique.h); this loop is the same for every technique.
 #include <functional>
 #include <map>
 #include <set>
@@ -14,7 +14,7 @@
 #include "capture/capture.h"
 #include "pipeline/camera_jump.h"
 #include "pipeline/readback.h"
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 #include "vk/context.h"
 
 namespace aor {

@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
-#include "blocks/pass_names.h"
-#include "capture/json_input.h"
-#include "capture/plain_text.h"
-#include "report/compare_stats.h"
+#include "core/input_error.h"
+#include "core/pass_names.h"
+#include "core/json_input.h"
+#include "core/plain_text.h"
+#include "core/compare_stats.h"
 #include "report/pipeline_time.h"
 
 namespace aor {

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 
 namespace aor {
 namespace {

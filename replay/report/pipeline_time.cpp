@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "blocks/pass_names.h"
-#include "report/stats.h"
+#include "core/pass_names.h"
+#include "core/stats.h"
 
 namespace aor {
 

@@ -8,9 +8,10 @@
 #include <fmt/format.h>
 
 #include "capture/content_hash.h"
+#include "core/version.h"
 #include "capture/image_io.h"
-#include "blocks/pass_names.h"
-#include "report/stats.h"
+#include "core/pass_names.h"
+#include "core/stats.h"
 
 namespace aor {
 namespace fs = std::filesystem;

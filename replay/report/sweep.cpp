@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "report/svg_plot.h"
 #include "techniques/registry.h"
 

@@ -9,7 +9,7 @@
 
 #include <functional>
 
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <set>
 
-#include "report/compare_stats.h"
+#include "core/compare_stats.h"
 #include "results/shift_estimate.h"
 
 namespace aor::results {

@@ -1,7 +1,7 @@
 #pragma once
 // Change points in a series' history (aoreplay trend): one value per run (its median), tested at
 // every commit boundary over a window of runs on each side with the exact Mann-Whitney U test
-// (report/compare_stats.h), the Hodges-Lehmann shift and its interval (shift_estimate.h), Holm
+// (core/compare_stats.h), the Hodges-Lehmann shift and its interval (shift_estimate.h), Holm
 // over the passes at the boundary, and Bonferroni over the boundaries scanned (a scan of B
 // boundaries is B chances of a false alarm). Deterministic: the same runs give the same answer
 // whatever order they were recorded in. The rules and why: results/README.md.

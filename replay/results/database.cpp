@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 #include "results/postgres_database.h"
 #include "results/sqlite_database.h"

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "report/compare_stats.h"
+#include "core/compare_stats.h"
 
 namespace aor::results {
 namespace {

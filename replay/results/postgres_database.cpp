@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <pqxx/pqxx>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor::results {
 namespace {

@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include "capture/content_hash.h"
-#include "capture/input_error.h"
-#include "capture/json_input.h"
-#include "capture/plain_text.h"
+#include "core/sha256.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
+#include "core/plain_text.h"
 
 namespace aor::results {
 namespace fs = std::filesystem;

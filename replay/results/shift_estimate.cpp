@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "report/compare_stats.h"
+#include "core/compare_stats.h"
 
 namespace aor::results {
 

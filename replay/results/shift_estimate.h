@@ -1,6 +1,6 @@
 #pragma once
 // The Hodges-Lehmann estimate of the shift between two samples and its distribution-free
-// confidence interval (Moses), the companions of the Mann-Whitney U test (report/compare_stats.h,
+// confidence interval (Moses), the companions of the Mann-Whitney U test (core/compare_stats.h,
 // which the trend's test itself uses).
 #include <cstddef>
 #include <vector>

@@ -7,7 +7,7 @@
 #include <sqlite3.h>
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor::results {
 namespace {

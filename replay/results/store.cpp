@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor::results {
 namespace {

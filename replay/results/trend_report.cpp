@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "report/compare_stats.h"
+#include "core/compare_stats.h"
 #include "report/svg_plot.h"
 
 namespace aor::results {

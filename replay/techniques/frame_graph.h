@@ -8,7 +8,7 @@
 
 #include "blocks/blocks.h"
 #include "graph/render_graph.h"
-#include "techniques/frame_builder.h"
+#include "technique_api/frame_builder.h"
 
 namespace aor {
 

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "techniques/user/user_technique.h"
 
 namespace aor {

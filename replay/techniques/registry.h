@@ -3,7 +3,7 @@
 #include <string_view>
 #include <vector>
 
-#include "techniques/technique.h"
+#include "technique_api/technique.h"
 
 namespace aor {
 

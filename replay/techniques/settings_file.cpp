@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
-#include "capture/plain_text.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
+#include "core/plain_text.h"
 #include "techniques/registry.h"
 
 namespace aor {

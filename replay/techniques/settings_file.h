@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

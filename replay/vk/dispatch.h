@@ -1,6 +1,6 @@
 #pragma once
 // One compute dispatch of a ComputePipeline, its resources bound by push descriptors. The render
-// graph's passes reach it through dispatchCompute (graph/pass_context.h), which supplies the views
+// graph's passes reach it through dispatchCompute (runtime/pass_context.h), which supplies the views
 // and layouts the graph's barriers left; a harness without a graph (bench/dispatch_floor) calls it
 // directly.
 #include <span>

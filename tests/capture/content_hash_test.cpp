@@ -8,6 +8,7 @@
 
 #include "capture/capture.h"
 #include "capture/content_hash.h"
+#include "core/sha256.h"
 
 namespace aor {
 namespace {

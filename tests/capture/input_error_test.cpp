@@ -1,4 +1,4 @@
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 #include <gtest/gtest.h>
 

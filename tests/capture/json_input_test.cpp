@@ -1,10 +1,10 @@
-// Issue 20: every JSON file aoreplay reads is bounded (capture/json_input.h) and capture loading is
+// Issue 20: every JSON file aoreplay reads is bounded (core/json_input.h) and capture loading is
 // linear in the number of frames. Each input here once crashed, hung or was accepted wrongly.
 #include <sys/stat.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "capture/json_input.h"
+#include "core/json_input.h"
 #include "test_support.h"
 
 namespace aor::test {

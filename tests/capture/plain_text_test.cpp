@@ -1,9 +1,9 @@
-// capture/plain_text.h: which characters count as control characters (C0 with tab and newline,
+// core/plain_text.h: which characters count as control characters (C0 with tab and newline,
 // DEL, C1) and how they and broken UTF-8 are written for a terminal, XML or generated code.
 #include <gtest/gtest.h>
 
-#include "capture/input_error.h"
-#include "capture/plain_text.h"
+#include "core/input_error.h"
+#include "core/plain_text.h"
 
 namespace aor::test {
 namespace {

@@ -21,7 +21,7 @@
 
 #include "capture/capture.h"
 #include "capture/image_io.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor::test {
 

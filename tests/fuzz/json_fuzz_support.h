@@ -10,8 +10,8 @@
 #include <string>
 #include <string_view>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 
 namespace aor::fuzz {
 

@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "capture/capture.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "generator/generator_internal.h"
 
 using namespace aor::gen;

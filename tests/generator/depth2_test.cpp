@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <glm/matrix.hpp>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "generator/generator_internal.h"
 
 using namespace aor::gen;

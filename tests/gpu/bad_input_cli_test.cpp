@@ -294,7 +294,7 @@ TEST(BadInputCli, AnotherProgramsSqliteFileIsNotTakenAsAStore) {
   EXPECT_EQ(readText(tables), "notes\n") << "no table of the store was added";
 }
 
-// Issue 44, class 8: one rule for control characters (capture/plain_text.h). Every command-line
+// Issue 44, class 8: one rule for control characters (core/plain_text.h). Every command-line
 // value, technique.json's strings and report.json's names refuse them where they come in, so a
 // commit string cannot recolour the terminal and a parameter's doc cannot add a line to the
 // generated GLSL; an empty value (`--out ''` once wrote into out/) is refused the same way.

@@ -13,10 +13,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "gpu_test_support.h"
 #include "report/compare.h"
-#include "report/compare_stats.h"
+#include "core/compare_stats.h"
 
 namespace aor {
 namespace {

@@ -1,6 +1,6 @@
 #include "gpu_test_support.h"
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 #include <algorithm>
 #include <cctype>

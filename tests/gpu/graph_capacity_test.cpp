@@ -13,7 +13,7 @@
 
 #include "embedded_shaders.h"
 #include "gpu_test_support.h"
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "report/run_outputs.h"
 #include "vk/vk_check.h"
 #include "test_graph.h"

@@ -2,7 +2,7 @@
 // holding a complete result (the old one or the new one), or, between the two renames of the
 // fallback swap, leaves the old one aside for the next run to put back; after one more run no
 // staging folder or lock file is left. The test-only switch AOREPLAY_TEST_KILL_AFTER=STEP makes
-// aoreplay SIGKILL itself right after STEP (report/output_directory.cpp); AOREPLAY_TEST_NO_EXCHANGE=1
+// aoreplay SIGKILL itself right after STEP (core/output_directory.cpp); AOREPLAY_TEST_NO_EXCHANGE=1
 // takes the path of file systems without RENAME_EXCHANGE. Then 50 kills at random moments.
 #include <chrono>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // The sweep's data handling and the SVG plots, without a GPU: grid expansion, Pareto flags, CSV.
 #include <gtest/gtest.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "report/svg_plot.h"
 #include "report/sweep.h"
 #include "techniques/registry.h"

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "gpu_test_support.h"
 #include "techniques/user/shader_compiler.h"
 #include "techniques/user/user_technique.h"

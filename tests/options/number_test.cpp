@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor {
 namespace {

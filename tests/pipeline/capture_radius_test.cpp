@@ -1,5 +1,5 @@
 // scene.ao_radius becomes the `radius` setting, and loadCapture checks it against the range the
-// setting accepts (capture.h: kMinAoRadius, kMaxAoRadius; techniques/parameters.cpp reads them). The two must agree: the bounds pass
+// setting accepts (capture.h: kMinAoRadius, kMaxAoRadius; technique_api/parameters.cpp reads them). The two must agree: the bounds pass
 // --set, the doubles just beyond them do not.
 #include <cmath>
 

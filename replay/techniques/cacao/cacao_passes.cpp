@@ -5,7 +5,7 @@
 // layers is one dispatch with a workgroup layer per layer (FidelityFX: one dispatch per layer).
 #include <algorithm>
 
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "techniques/cacao/cacao_settings.h"
 
 namespace aor {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cacao/cacao.h"
-#include "techniques/frame_builder.h"
-#include "techniques/settings.h"
+#include "technique_api/frame_builder.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

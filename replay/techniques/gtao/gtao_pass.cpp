@@ -1,7 +1,7 @@
 // Pass 1 of seed 000: GTAO horizon search (shaders/gtao/gtao.comp, math in shaders/gtao/gtao.h).
 #include "blocks/blocks.h"
 #include "blocks/camera.h"
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "techniques/gtao/gtao_settings.h"
 
 namespace aor {

@@ -5,8 +5,8 @@
 #include <glm/glm.hpp>
 
 #include "gtao/gtao.h"
-#include "techniques/frame_builder.h"
-#include "techniques/settings.h"
+#include "technique_api/frame_builder.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "blocks/blocks.h"
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "techniques/gtao/gtao_settings.h"
 #include "techniques/registry.h"
 

@@ -6,8 +6,8 @@
 
 #include "blocks/camera.h"
 #include "blocks/linearize_depth.h"
-#include "capture/input_error.h"
-#include "graph/pass_context.h"
+#include "core/input_error.h"
+#include "runtime/pass_context.h"
 #include "techniques/sao/sao_settings.h"
 
 namespace aor {

@@ -5,8 +5,8 @@
 #include <array>
 
 #include "sao/sao.h"
-#include "techniques/frame_builder.h"
-#include "techniques/settings.h"
+#include "technique_api/frame_builder.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

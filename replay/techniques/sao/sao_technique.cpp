@@ -4,7 +4,7 @@
 // point: README.md in this folder.
 #include "blocks/blocks.h"
 #include "capture/capture.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 #include "techniques/registry.h"
 #include "techniques/sao/sao_settings.h"
 

@@ -13,10 +13,10 @@
 #include <shaderc/shaderc.hpp>
 #include <spirv-tools/libspirv.hpp>
 
-#include "capture/content_hash.h"
-#include "capture/input_error.h"
+#include "core/sha256.h"
+#include "core/input_error.h"
 #include "embedded_shaders.h"
-#include "capture/json_input.h"
+#include "core/json_input.h"
 #include "techniques/user/user_header.h"
 #include "vk/shader_reflection.h"
 

@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "capture/plain_text.h"
+#include "core/plain_text.h"
 
 namespace aor {
 namespace {

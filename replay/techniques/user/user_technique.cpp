@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 
 #include "blocks/blocks.h"
-#include "capture/input_error.h"
-#include "graph/pass_context.h"
+#include "core/input_error.h"
+#include "runtime/pass_context.h"
 #include "techniques/registry.h"
 #include "techniques/user/shader_compiler.h"
 #include "techniques/user/user_header.h"

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "techniques/technique.h"
+#include "technique_api/technique.h"
 
 namespace aor {
 

@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "blocks/blocks.h"
-#include "capture/input_error.h"
-#include "capture/json_input.h"
-#include "capture/plain_text.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
+#include "core/plain_text.h"
 #include "vk/device_limits.h"
 
 namespace aor {
@@ -24,7 +24,7 @@ namespace {
 
 constexpr const char* kFormat = "aoreplay-technique";
 constexpr int kVersion = 1;
-// A run times at most 256 passes (graph/executor.cpp); the shared front, the params upload and the
+// A run times at most 256 passes (runtime/executor.cpp); the shared front, the params upload and the
 // denoisers take fewer than 56 of them. Checked before any shader is compiled.
 constexpr size_t kMaxUserPasses = 200;
 constexpr uint32_t kMaxWorkgroupInvocations = 1024;  // Vulkan's guaranteed minimum of maxComputeWorkGroupInvocations

@@ -9,7 +9,7 @@
 
 #include <vulkan/vulkan_core.h>
 
-#include "techniques/technique.h"
+#include "technique_api/technique.h"
 
 namespace aor {
 

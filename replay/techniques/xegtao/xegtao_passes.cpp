@@ -6,7 +6,7 @@
 
 #include "blocks/blocks.h"
 #include "blocks/camera.h"
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "techniques/xegtao/xegtao_settings.h"
 
 namespace aor {

@@ -1,8 +1,8 @@
 #pragma once
 // XeGTAO (seed 002): a run's settings as XeGTAO.h's GTAOSettings holds them, and the per-frame
 // constants of its three passes (XeGTAO.h GTAOUpdateConstants, from this tool's camera).
-#include "techniques/frame_builder.h"
-#include "techniques/settings.h"
+#include "technique_api/frame_builder.h"
+#include "technique_api/settings.h"
 #include "xegtao/xegtao.h"
 
 namespace aor {

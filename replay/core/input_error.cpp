@@ -1,10 +1,10 @@
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 #include <algorithm>
 #include <cctype>
 #include <utility>
 
-#include "capture/plain_text.h"
+#include "core/plain_text.h"
 
 namespace aor {
 namespace {

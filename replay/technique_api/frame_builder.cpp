@@ -1,4 +1,4 @@
-#include "techniques/frame_builder.h"
+#include "technique_api/frame_builder.h"
 
 #include <stdexcept>
 

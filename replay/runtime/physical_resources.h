@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "graph/render_graph.h"
 #include "vk/resources.h"
 

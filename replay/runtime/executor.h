@@ -4,7 +4,7 @@
 // barriers); around each pass, two timestamp queries.
 #include <vector>
 
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 #include "graph/render_graph.h"
 
 namespace aor {

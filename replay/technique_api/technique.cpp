@@ -1,10 +1,10 @@
-#include "techniques/technique.h"
+#include "technique_api/technique.h"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 
 namespace aor {
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor {
 

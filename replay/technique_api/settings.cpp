@@ -1,4 +1,4 @@
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 
 #include <algorithm>
 #include <charconv>
@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "capture/capture.h"
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor {
 namespace {

@@ -1,4 +1,4 @@
-#include "report/output_directory.h"
+#include "core/output_directory.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -21,8 +21,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 
 #ifndef AOREPLAY_VERSION
 #define AOREPLAY_VERSION "unknown"

@@ -12,7 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "graph/render_graph.h"
-#include "techniques/settings.h"
+#include "technique_api/settings.h"
 #include "vk/pipeline_cache.h"
 
 namespace aor {

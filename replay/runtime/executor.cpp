@@ -1,4 +1,4 @@
-#include "graph/executor.h"
+#include "runtime/executor.h"
 
 #include "vk/context.h"
 #include "vk/vk_check.h"

@@ -1,4 +1,4 @@
-#include "graph/pass_context.h"
+#include "runtime/pass_context.h"
 
 #include <fmt/format.h>
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "techniques/parameters.h"
+#include "technique_api/parameters.h"
 
 namespace aor {
 

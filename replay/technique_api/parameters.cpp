@@ -1,4 +1,4 @@
-#include "techniques/parameters.h"
+#include "technique_api/parameters.h"
 
 #include "capture/capture.h"  // kMinAoRadius, kMaxAoRadius: the range loadCapture checks scene.ao_radius against
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "techniques/technique.h"
+#include "technique_api/technique.h"
 
 namespace aor {
 

@@ -1,11 +1,11 @@
-#include "capture/plain_text.h"
+#include "core/plain_text.h"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "capture/input_error.h"
-#include "capture/json_input.h"
+#include "core/input_error.h"
+#include "core/json_input.h"
 
 namespace aor {
 namespace {

@@ -1,4 +1,4 @@
-#include "report/graph_json.h"
+#include "graph/graph_json.h"
 
 namespace aor {
 

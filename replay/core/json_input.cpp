@@ -1,4 +1,4 @@
-#include "capture/json_input.h"
+#include "core/json_input.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <simdjson.h>
 
-#include "capture/input_error.h"
+#include "core/input_error.h"
 
 namespace aor {
 namespace {

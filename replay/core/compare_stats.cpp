@@ -1,4 +1,4 @@
-#include "report/compare_stats.h"
+#include "core/compare_stats.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "graph/physical_resources.h"
+#include "runtime/physical_resources.h"
 
 #include <fmt/format.h>
 
