@@ -29,7 +29,7 @@ packages=(
   libsqlitecpp-dev libsqlite3-dev libpqxx-dev  # aoreplay record/trend/export: the SQLite and PostgreSQL stores
   postgresql sqlite3  # the store tests: a real PostgreSQL server (and psql), the sqlite3 shell for row counts
   libshaderc-dev   # user techniques' GLSL compiled at run time (replay/techniques/user/)
-  glslc            # the offline compile of a user technique's shader that FORMAT.md shows (tests/gpu/user_technique_test.cpp)
+  glslc            # the offline compile of a user technique's shader that FORMAT.md shows (tests/techniques/user_technique_test.cpp)
   libembree-dev libtinyobjloader-dev glmark2-data
   libgtest-dev libgmock-dev libbenchmark-dev libbenchmark-tools python3-scipy
   graphviz libgraphviz-dev  # report.html lays out the render graph with Graphviz's library

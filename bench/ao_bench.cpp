@@ -12,7 +12,7 @@
 // Names: PASS/TECHNIQUE/PRESET[/KEY:VALUE...]/WxH, and `pipeline` for the sum of the compute passes.
 //
 // Own flags (before Google Benchmark's): --technique=NAME[,NAME...] (default gtao; a value with
-// a '/' or ending in .json is a user technique's technique.json, techniques/FORMAT.md)
+// a '/' or ending in .json is a user technique's technique.json, user_techniques/FORMAT.md)
 // --sizes=320x180,640x360,1920x1080  --presets=NAME,... (default: every preset of each technique)
 // --extra=KEY=VALUE[;KEY=VALUE...] (repeatable: one more configuration per size, the default preset
 // with those assignments; e.g. --extra=bent=0 --extra=half_res=1 for gtao)
@@ -53,11 +53,11 @@
 #include "core/input_error.h"
 #include "options/number.h"
 #include "options/size.h"
-#include "pipeline/replayer.h"
-#include "techniques/frame_graph.h"
+#include "replay_loop/replayer.h"
+#include "techniques/built_frame.h"
 #include "techniques/registry.h"
 #include "core/compare_stats.h"
-#include "report/pipeline_time.h"
+#include "report/gpu_total.h"
 #include "report/run_outputs.h"
 #include "core/stats.h"
 #include "vk/context.h"
@@ -152,10 +152,10 @@ class Harness {
     FrameBuilder::Setup first = setup;
     first.camera = first.previousCamera = setup.previousCamera;
     first.historyValid = false;
-    auto frameGraph = buildSteadyStateFrameGraph(pipelines, first, setup);
-    auto compiled = frameGraph.graph.compile();
+    auto builtFrame = buildSteadyStateFrame(pipelines, first, setup);
+    auto compiled = builtFrame.graph.compile();
     std::vector<std::string> names;
-    for (const auto& p : compiled.passes) names.push_back(frameGraph.graph.passes()[p.pass].name);
+    for (const auto& p : compiled.passes) names.push_back(builtFrame.graph.passes()[p.pass].name);
     return names;
   }
 
@@ -174,7 +174,7 @@ class Harness {
     Measured m;
     const auto& frame = result.frames.back();
     for (const auto& pass : frame.passes) m.passMs[pass.name] = pass.durationsMs;
-    // The run total's definition (report/pipeline_time.h): Google Benchmark's median of these
+    // The run total's definition (report/gpu_total.h): Google Benchmark's median of these
     // samples is the frame's totalMedianMs.
     m.pipelineMs = repetitionSumsMs({timedFrame(frame)}, PassGroup::Compute);
     return measured_.emplace(config.key(), std::move(m)).first->second;

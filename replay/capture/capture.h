@@ -22,7 +22,7 @@ inline constexpr int kMaxCaptureFrames = 100'000;
 // 256 MiB: a capture of 10^5 frames as writeCapture writes it is about 100 MB.
 inline constexpr JsonLimits kCaptureJsonLimits{std::uint64_t(256) << 20, kMaxCaptureFrames, 128};
 // scene.ao_radius must lie in the range of the `radius` setting it becomes (technique_api/parameters.cpp;
-// tests/pipeline checks that the two agree).
+// tests/replay_loop checks that the two agree).
 inline constexpr double kMinAoRadius = 1e-6;
 inline constexpr double kMaxAoRadius = 1e7;
 

@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/settings_options.h"
-#include "techniques/frame_graph.h"
+#include "techniques/built_frame.h"
 #include "core/output_directory.h"
 #include "vk/context.h"
 
@@ -57,19 +57,19 @@ int graphCommand(const GraphArgs& args) {
   first.state = state.get();
   auto setup = setupFor(index, historyWanted);
   setup.state = state.get();
-  auto frameGraph = buildSteadyStateFrameGraph(pipelines, first, setup);
-  auto compiled = frameGraph.graph.compile();
+  auto builtFrame = buildSteadyStateFrame(pipelines, first, setup);
+  auto compiled = builtFrame.graph.compile();
 
   // With --dot - the graph goes to standard output, so the description goes to standard error.
   FILE* text = args.dot == "-" ? stderr : stdout;
   fmt::print(text, "capture: {} ({}x{}), frame {} of replay {}:{}, settings: {}\n", capture.name, capture.width,
              capture.height, index, begin, end, settings.toJson().dump());
-  fmt::print(text, "{}", graph::describe(frameGraph.graph, compiled));
-  for (const auto& [pass, why] : frameGraph.notes) fmt::print(text, "why {} is not needed: {}\n", pass, why);
+  fmt::print(text, "{}", graph::describe(builtFrame.graph, compiled));
+  for (const auto& [pass, why] : builtFrame.notes) fmt::print(text, "why {} is not needed: {}\n", pass, why);
 
   fs::path dotPath = args.dot.empty() ? fs::path("out") / capture.name / "graph.dot" : fs::path(args.dot);
   // InputError (exit 2) if it cannot, or if it would overwrite the capture's own files.
-  writeFileAtomically(dotPath, graph::toDot(frameGraph.graph, compiled), captureFiles(capture));
+  writeFileAtomically(dotPath, graph::toDot(builtFrame.graph, compiled), captureFiles(capture));
   if (args.dot != "-")
     fmt::print("dot: {} (render with: dot -Tsvg {} -o graph.svg)\n", dotPath.string(), dotPath.string());
   return kExitOk;

@@ -51,7 +51,7 @@ void SettingsOptions::add(CLI::App& command, const Technique& help) {
   techniqueOption =
       command.add_option("--technique", technique,
                          fmt::format("{} (aoreplay techniques lists them), or a user technique's technique.json "
-                                     "(a value with '/' or ending in .json; techniques/FORMAT.md)",
+                                     "(a value with '/' or ending in .json; user_techniques/FORMAT.md)",
                                      fmt::join(names, ", ")))
           ->capture_default_str();
   command.add_option("--settings", settingsFile,

@@ -15,7 +15,7 @@ void registerTechniqueHeaderCommand(CLI::App& app) {
   auto file = std::make_shared<std::string>();
   auto pass = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("technique-header",
-                                 "print the generated aoreplay.glsl of one pass of a user technique (techniques/FORMAT.md)");
+                                 "print the generated aoreplay.glsl of one pass of a user technique (user_techniques/FORMAT.md)");
   cmd->add_option("file", *file, "the technique's technique.json")->required();
   cmd->add_option("pass", *pass, "the pass's name")->required();
   handlers()["technique-header"] = [file, pass] {

@@ -93,7 +93,7 @@ bool matchesPattern(std::string_view name, std::string_view pattern) {
 
 // AOREPLAY_TEST_KILL_AFTER=STEP (SIGKILL) and AOREPLAY_TEST_STOP_AFTER=STEP (SIGSTOP) stop the
 // process right after STEP of the replacement; AOREPLAY_TEST_NO_EXCHANGE=1 takes the fallback path
-// of file systems without RENAME_EXCHANGE. For the kill test (tests/gpu/output_safety_test.cpp).
+// of file systems without RENAME_EXCHANGE. For the kill test (tests/cli/output_safety_test.cpp).
 void reached(const char* step) {
   static const char* killAfter = std::getenv("AOREPLAY_TEST_KILL_AFTER");
   static const char* stopAfter = std::getenv("AOREPLAY_TEST_STOP_AFTER");

@@ -15,14 +15,14 @@ constexpr VkAccessFlags2 kWriteAccessBits =
 
 bool hasWrite(VkAccessFlags2 access) { return (access & kWriteAccessBits) != 0; }
 bool isSubset(uint64_t part, uint64_t whole) { return (part & ~whole) == 0; }
-bool sameState(const ImageState& a, const ImageState& b) {
+bool sameState(const ResourceState& a, const ResourceState& b) {
   return a.stage == b.stage && a.access == b.access && a.layout == b.layout;
 }
 
 // A buffer has no layout; and vkCmdFillBuffer (ClearWrite) runs in the CLEAR stage by the current
 // specification but in COPY by earlier ones and their validation layers (Debian 12's), so a buffer
 // clear is synchronised as both.
-ImageState bufferState(ImageState s) {
+ResourceState bufferState(ResourceState s) {
   if (s.stage & VK_PIPELINE_STAGE_2_CLEAR_BIT) s.stage |= VK_PIPELINE_STAGE_2_COPY_BIT;
   s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
   return s;
@@ -30,7 +30,7 @@ ImageState bufferState(ImageState s) {
 
 // Synchronisation of one subresource while barriers are derived.
 struct Tracker {
-  ImageState state;                         // layout + every access not yet covered by a barrier (src scope)
+  ResourceState state;                         // layout + every access not yet covered by a barrier (src scope)
   bool writeSeen = false;                   // a write (or layout transition) exists that readers must see
   VkPipelineStageFlags2 visibleStages = 0;  // scopes the last write has been made visible to
   VkAccessFlags2 visibleAccess = 0;
@@ -38,11 +38,11 @@ struct Tracker {
 
 struct SubBarrier {
   uint32_t mip, layer;
-  ImageState before, after;
+  ResourceState before, after;
 };
 
 // The barrier one subresource needs before an access needing `need`, if any; updates the tracker.
-std::optional<SubBarrier> track(Tracker& t, const ImageState& need, uint32_t mip, uint32_t layer) {
+std::optional<SubBarrier> track(Tracker& t, const ResourceState& need, uint32_t mip, uint32_t layer) {
   const bool writes = hasWrite(need.access);
   const bool layoutChange = t.state.layout != need.layout;
   const bool pendingWrite = hasWrite(t.state.access);
@@ -108,8 +108,8 @@ std::vector<Barrier> mergeRanges(ResourceId id, std::vector<SubBarrier> subs) {
 
 // What the previous member of a transient's memory slot left pending: every stage and access of
 // every one of its subresources.
-ImageState slotPredecessorState(const std::vector<Tracker>& trackers) {
-  ImageState s;
+ResourceState slotPredecessorState(const std::vector<Tracker>& trackers) {
+  ResourceState s;
   for (const Tracker& t : trackers) {
     s.stage |= t.state.stage;
     s.access |= t.state.access;
@@ -152,16 +152,16 @@ void barriers(const std::vector<ResourceDecl>& resources, const std::vector<Pass
       for (uint32_t layer = 0; layer < layers; ++layer)
         for (uint32_t mip = 0; mip < mips; ++mip) {
           Tracker& t = trackers[id][layer * mips + mip];
-          ImageState need = requiredState(pass, id, Subresources{mip, 1, layer, 1});
+          ResourceState need = requiredState(pass, id, Subresources{mip, 1, layer, 1});
           if (res.isBuffer()) need = bufferState(need);
           const bool touchedHere = need.stage != 0;
           if (firstUse && predecessor != kNoResource) {
             // The memory may still be in use by the slot's previous member: every subresource waits
             // for it, and one this pass does not touch is moved to GENERAL now, so its first later
             // access chains after this wait.
-            ImageState before = slotPredecessorState(trackers[predecessor]);
+            ResourceState before = slotPredecessorState(trackers[predecessor]);
             before.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-            ImageState after = touchedHere ? need : ImageState{need.stage | requiredState(pass, id).stage, 0,
+            ResourceState after = touchedHere ? need : ResourceState{need.stage | requiredState(pass, id).stage, 0,
                                                                res.isBuffer() ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_GENERAL};
             subs.push_back({mip, layer, before, after});
             t = Tracker{after, touchedHere ? hasWrite(need.access) : true, 0, 0};
@@ -173,7 +173,7 @@ void barriers(const std::vector<ResourceDecl>& resources, const std::vector<Pass
             continue;
           }
           if (firstUse) {  // contents are discarded
-            subs.push_back({mip, layer, ImageState{0, 0, VK_IMAGE_LAYOUT_UNDEFINED}, need});
+            subs.push_back({mip, layer, ResourceState{0, 0, VK_IMAGE_LAYOUT_UNDEFINED}, need});
             t = Tracker{need, hasWrite(need.access), 0, 0};
             continue;
           }
@@ -189,7 +189,7 @@ void barriers(const std::vector<ResourceDecl>& resources, const std::vector<Pass
     res.finalStates.clear();
     for (uint32_t s = 0; s < decl.subresourceCount(); ++s)
       res.finalStates.push_back(res.used ? trackers[id][s].state
-                                         : (decl.kind == ResourceKind::Transient ? ImageState{} : decl.initialStateOf(s)));
+                                         : (decl.kind == ResourceKind::Transient ? ResourceState{} : decl.initialStateOf(s)));
     res.finalState = res.finalStates.front();
   }
 }

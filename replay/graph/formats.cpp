@@ -111,7 +111,7 @@ const char* formatName(VkFormat format) {
   return info ? info->name : "unknown format";
 }
 
-ImageState requiredState(Access access) {
+ResourceState requiredState(Access access) {
   switch (access) {
     case Access::SampledRead:
       return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
@@ -145,13 +145,13 @@ bool isWrite(Access access) {
   return access == Access::StorageWrite || access == Access::TransferWrite || access == Access::ClearWrite;
 }
 
-ImageState requiredState(const PassDecl& pass, ResourceId id, Subresources range) {
-  ImageState merged;
+ResourceState requiredState(const PassDecl& pass, ResourceId id, Subresources range) {
+  ResourceState merged;
   bool any = false;
   for (const auto& a : pass.accesses) {
     if (a.resource != id) continue;
     if (!(range == Subresources{}) && !overlaps(a.range, range)) continue;
-    ImageState need = requiredState(a.access);
+    ResourceState need = requiredState(a.access);
     merged.stage |= need.stage;
     merged.access |= need.access;
     if (!any) {

@@ -100,7 +100,7 @@ ResourceId RenderGraph::createImage(std::string name, ImageDesc desc) {
   return add(ResourceDecl{std::move(name), desc, {}, ResourceType::Image, ResourceKind::Transient});
 }
 
-ResourceId RenderGraph::importImage(std::string name, ImageDesc desc, ImageState initialState) {
+ResourceId RenderGraph::importImage(std::string name, ImageDesc desc, ResourceState initialState) {
   validateDesc(name, desc);
   return add(ResourceDecl{std::move(name), desc, {}, ResourceType::Image, ResourceKind::Imported, initialState});
 }
@@ -110,29 +110,29 @@ ResourceId RenderGraph::createBuffer(std::string name, BufferDesc desc) {
   return add(ResourceDecl{std::move(name), {}, desc, ResourceType::Buffer, ResourceKind::Transient});
 }
 
-ResourceId RenderGraph::importBuffer(std::string name, BufferDesc desc, ImageState initialState) {
+ResourceId RenderGraph::importBuffer(std::string name, BufferDesc desc, ResourceState initialState) {
   if (desc.bytes == 0) throw std::invalid_argument(fmt::format("buffer '{}' is empty", name));
   initialState.layout = VK_IMAGE_LAYOUT_UNDEFINED;
   return add(ResourceDecl{std::move(name), {}, desc, ResourceType::Buffer, ResourceKind::Imported, initialState});
 }
 
-ResourceId RenderGraph::importExternalImage(std::string name, ImageDesc desc, const GpuImage& image, ImageState initialState) {
+ResourceId RenderGraph::importExternalImage(std::string name, ImageDesc desc, const GpuImage& image, ResourceState initialState) {
   ResourceId id = importImage(std::move(name), desc, initialState);
   resources_[id].externalImage = &image;
   return id;
 }
 
-ResourceId RenderGraph::importExternalBuffer(std::string name, BufferDesc desc, const GpuBuffer& buffer, ImageState initialState) {
+ResourceId RenderGraph::importExternalBuffer(std::string name, BufferDesc desc, const GpuBuffer& buffer, ResourceState initialState) {
   ResourceId id = importBuffer(std::move(name), desc, initialState);
   resources_[id].externalBuffer = &buffer;
   return id;
 }
 
 HistoryPair RenderGraph::createHistory(std::string name, ImageDesc desc, bool previousValid,
-                                       ImageState previousState, ImageState currentState) {
+                                       ResourceState previousState, ResourceState currentState) {
   validateDesc(name, desc);
   HistoryPair pair;
-  auto history = [&](const char* half, ImageState state, bool current) {
+  auto history = [&](const char* half, ResourceState state, bool current) {
     return add(ResourceDecl{name + half, desc, {}, ResourceType::Image, ResourceKind::History, state, {}, nullptr, nullptr,
                             name, current});
   };
@@ -141,7 +141,7 @@ HistoryPair RenderGraph::createHistory(std::string name, ImageDesc desc, bool pr
   return pair;
 }
 
-void RenderGraph::setInitialStates(ResourceId id, std::vector<ImageState> states) {
+void RenderGraph::setInitialStates(ResourceId id, std::vector<ResourceState> states) {
   ResourceDecl& res = resources_.at(id);
   if (res.kind == ResourceKind::Transient || states.size() != res.subresourceCount())
     throw std::invalid_argument(fmt::format("'{}': {} initial states for {} subresources of a {} resource", res.name,

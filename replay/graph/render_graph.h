@@ -3,8 +3,8 @@
 // write in a setup step; compile() culls passes whose outputs nothing consumes, computes lifetimes,
 // assigns transients to shared memory slots (aliasing) and derives every barrier and layout
 // transition from the declared accesses, per mip level and array layer. Nothing here touches a
-// GPU, so the graph is unit-tested without one; the graph's runtime beside it (executor.h,
-// physical_resources.h, pass_context.h, in aor_gpu) records a compiled graph into a command buffer.
+// GPU, so the graph is unit-tested without one; its runtime (replay/runtime/: executor.h,
+// physical_resources.h, pass_context.h) records a compiled graph into a command buffer.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -54,15 +54,14 @@ enum class Access : uint8_t {
 
 // Synchronisation state of an image subresource or a buffer: what last touched it and, for
 // images, in which layout it was left (buffers stay UNDEFINED).
-struct ImageState {
+struct ResourceState {
   VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_NONE;
   VkAccessFlags2 access = VK_ACCESS_2_NONE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
-using ResourceState = ImageState;
 // Stage, access mask and layout that one declared access needs (of an image; buffers ignore the
 // layout); writes() tells hazards apart.
-ImageState requiredState(Access access);
+ResourceState requiredState(Access access);
 bool isWrite(Access access);
 
 // A range of mip levels and array layers; the defaults mean the whole image. kAll counts are
@@ -104,8 +103,8 @@ struct ResourceDecl {
   BufferDesc buffer;        // buffers
   ResourceType type = ResourceType::Image;
   ResourceKind kind = ResourceKind::Transient;
-  ImageState initialState;  // Imported/History: state left by earlier work (every subresource); Transient: UNDEFINED
-  std::vector<ImageState> initialStates;  // when not empty: per subresource (layer * mips + mip), overriding initialState
+  ResourceState initialState;  // Imported/History: state left by earlier work (every subresource); Transient: UNDEFINED
+  std::vector<ResourceState> initialStates;  // when not empty: per subresource (layer * mips + mip), overriding initialState
   // Imported only: the runtime object behind it, owned by whoever imported it (a technique's BVH,
   // a staging buffer). Null: the runtime keeps a persistent one by name.
   const GpuImage* externalImage = nullptr;
@@ -115,7 +114,7 @@ struct ResourceDecl {
   bool isBuffer() const { return type == ResourceType::Buffer; }
   uint32_t subresourceCount() const { return isBuffer() ? 1 : desc.mipLevels * desc.arrayLayers; }
   uint64_t bytes() const { return isBuffer() ? buffer.bytes : imageBytes(desc); }
-  const ImageState& initialStateOf(uint32_t subresource) const {
+  const ResourceState& initialStateOf(uint32_t subresource) const {
     return initialStates.empty() ? initialState : initialStates.at(subresource);
   }
 };
@@ -141,8 +140,8 @@ struct HistoryPair {
 
 struct Barrier {
   ResourceId resource = kNoResource;
-  ImageState before;    // src stage/access and old layout (UNDEFINED when contents are discarded)
-  ImageState after;     // dst stage/access and new layout
+  ResourceState before;    // src stage/access and old layout (UNDEFINED when contents are discarded)
+  ResourceState after;     // dst stage/access and new layout
   Subresources range;   // the mips and layers it covers (resolved; whole buffer for buffers)
 };
 
@@ -164,8 +163,8 @@ struct CompiledResource {
   int memorySlot = -1;       // Transient only: resources with the same slot share memory
   VkImageUsageFlags usage = 0;   // images: union over the live accesses
   VkBufferUsageFlags bufferUsage = 0;  // buffers: likewise
-  ImageState finalState;     // state after the last live access (executors carry it to the next frame)
-  std::vector<ImageState> finalStates;  // per subresource (mip-major within each layer: layer * mips + mip)
+  ResourceState finalState;     // state after the last live access (executors carry it to the next frame)
+  std::vector<ResourceState> finalStates;  // per subresource (mip-major within each layer: layer * mips + mip)
 };
 
 struct MemorySlot {
@@ -188,18 +187,18 @@ struct CompiledGraph {
 class RenderGraph {
  public:
   ResourceId createImage(std::string name, ImageDesc desc);
-  ResourceId importImage(std::string name, ImageDesc desc, ImageState initialState = {});
+  ResourceId importImage(std::string name, ImageDesc desc, ResourceState initialState = {});
   ResourceId createBuffer(std::string name, BufferDesc desc);
-  ResourceId importBuffer(std::string name, BufferDesc desc, ImageState initialState = {});
+  ResourceId importBuffer(std::string name, BufferDesc desc, ResourceState initialState = {});
   // Imports whose runtime object the caller owns (see ResourceDecl::externalImage/externalBuffer).
-  ResourceId importExternalImage(std::string name, ImageDesc desc, const GpuImage& image, ImageState initialState = {});
-  ResourceId importExternalBuffer(std::string name, BufferDesc desc, const GpuBuffer& buffer, ImageState initialState = {});
+  ResourceId importExternalImage(std::string name, ImageDesc desc, const GpuImage& image, ResourceState initialState = {});
+  ResourceId importExternalBuffer(std::string name, BufferDesc desc, const GpuBuffer& buffer, ResourceState initialState = {});
   // History images are explicit: `current` always exists; `previous` only when previousValid.
   HistoryPair createHistory(std::string name, ImageDesc desc, bool previousValid,
-                            ImageState previousState = {}, ImageState currentState = {});
+                            ResourceState previousState = {}, ResourceState currentState = {});
   // Per-subresource states left by earlier work, for an imported or history image whose mips or
   // layers were left differently (layer * mips + mip).
-  void setInitialStates(ResourceId id, std::vector<ImageState> states);
+  void setInitialStates(ResourceId id, std::vector<ResourceState> states);
   uint32_t addPass(std::string name, const std::function<void(PassBuilder&)>& setup,
                    std::function<void(PassContext&)> execute = {});
 
@@ -227,7 +226,7 @@ const char* formatName(VkFormat format);
 // read + storage write of one image) the layout is GENERAL. This is the layout the runtime must
 // put in that pass's descriptors, and the `after` state of any barrier the graph emits for it.
 // {NONE, NONE, UNDEFINED} if untouched. The range defaults to the whole resource.
-ImageState requiredState(const PassDecl& pass, ResourceId id, Subresources range = {});
+ResourceState requiredState(const PassDecl& pass, ResourceId id, Subresources range = {});
 // Whether two resolved ranges share a subresource.
 bool overlaps(const Subresources& a, const Subresources& b);
 const char* accessName(Access access);             // "sampled read", "storage write", ...

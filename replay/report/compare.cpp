@@ -11,7 +11,7 @@
 #include "core/json_input.h"
 #include "core/plain_text.h"
 #include "core/compare_stats.h"
-#include "report/pipeline_time.h"
+#include "report/gpu_total.h"
 
 namespace aor {
 namespace fs = std::filesystem;
@@ -52,8 +52,8 @@ T memberOr(const nlohmann::json& object, const char* key, const T& fallback, con
 
 // report.json's samples are frame-major over frames x repetitions: frames[j].gpu_ms_median names
 // the passes frame j ran and run.repeat how many timed repetitions each had, which splits them
-// back into frames, so the total is summed per repetition (report/pipeline_time.h) exactly as the
-// run summed it. A trimmed report without frames[] (tests/gpu/data) is taken as one frame when
+// back into frames, so the total is summed per repetition (report/gpu_total.h) exactly as the
+// run summed it. A trimmed report without frames[] (tests/support/data) is taken as one frame when
 // every pass has the same number of samples (true when every pass ran in every frame); otherwise it
 // gets no total.
 std::optional<std::vector<TimedFrame>> framesOfReport(const nlohmann::json& report, const TimingSamples& passes,

@@ -23,7 +23,7 @@ struct TimingSeries {
 using TimingSamples = std::vector<TimingSeries>;  // in file order
 
 // Reads report.json (passes[].gpu_ms.samples, plus "total": the per-repetition sums of the compute
-// passes, report/pipeline_time.h, whose median is the run's gpu_ms_total_median) or Google
+// passes, report/gpu_total.h, whose median is the run's gpu_ms_total_median) or Google
 // Benchmark JSON (iteration entries' real_time, which is the manual GPU time when the benchmark
 // uses it; a name whose first segment is a host-copy pass is a host copy). Throws InputError
 // naming the file and field.

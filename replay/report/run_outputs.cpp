@@ -99,7 +99,7 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   report["settings"] = result.settings.toJson();
   report["run"] = {{"frames", {options.frameBegin, options.frameBegin + int(result.frames.size())}},
                    {"repeat", options.repeat}, {"warmup", options.warmup}};
-  // A user technique's technique.json, as --technique named it (techniques/FORMAT.md).
+  // A user technique's technique.json, as --technique named it (user_techniques/FORMAT.md).
   if (const auto& file = result.settings.technique().file; !file.empty()) report["run"]["technique_file"] = file;
   report["timing"] = {{"mode", timingModeName(result.timingMode)},
                       {"preload_budget_mib", double(options.preloadBudgetBytes) / double(1 << 20)},

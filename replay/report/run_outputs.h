@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
-#include "pipeline/replayer.h"
-#include "report/pipeline_time.h"
+#include "replay_loop/replayer.h"
+#include "report/gpu_total.h"
 
 namespace aor {
 
@@ -18,7 +18,7 @@ void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& fr
 void writeDebugImage(const std::filesystem::path& outDir, int frameIndex, const DebugImage& view);
 // Per pass name, every timed duration over all frames and repetitions, in first-seen order.
 std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
-// A frame's pass durations as the totals of report/pipeline_time.h take them.
+// A frame's pass durations as the totals of report/gpu_total.h take them.
 TimedFrame timedFrame(const FrameRecord& frame);
 std::vector<TimedFrame> timedFrames(const ReplayResult& result);
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
@@ -29,7 +29,7 @@ void writeText(const std::filesystem::path& path, const std::string& text);
 // json.dump(2) and a newline, through writeText.
 void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
 // Per-pass table (min / median / max GPU ms over all timed runs) for the terminal, and the total's
-// row: the same over the per-repetition sums of the compute passes (report/pipeline_time.h).
+// row: the same over the per-repetition sums of the compute passes (report/gpu_total.h).
 std::string passTable(const ReplayResult& result);
 
 }  // namespace aor

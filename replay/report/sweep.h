@@ -47,7 +47,7 @@ SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resol
 struct SweepRow {
   SweepConfig config;
   std::vector<std::pair<std::string, double>> passMs;  // per live pass, median over frames x repeats
-  double totalMs = 0;                                  // totalMedianMs (report/pipeline_time.h)
+  double totalMs = 0;                                  // totalMedianMs (report/gpu_total.h)
   nlohmann::json error;                                // ErrorAnalysis::summaryJson()
   double rmse = 0, ssim = 0;
   double haloRmse = 0, haloBias = 0;  // over the halo band (error.halo_band; 0 pixels: both 0)

@@ -41,15 +41,15 @@ std::string PhysicalResources::physicalKey(const graph::ResourceDecl& decl) cons
   return decl.kind == graph::ResourceKind::History ? historyKey(decl.historyBase, decl.historyCurrent) : decl.name;
 }
 
-graph::ImageState PhysicalResources::historyState(const std::string& base, bool current) const {
+graph::ResourceState PhysicalResources::historyState(const std::string& base, bool current) const {
   auto it = persistent_.find(historyKey(base, current));
-  return it == persistent_.end() || it->second.states.empty() ? graph::ImageState{} : it->second.states.front();
+  return it == persistent_.end() || it->second.states.empty() ? graph::ResourceState{} : it->second.states.front();
 }
 
-graph::ImageState PhysicalResources::importedState(const std::string& name) const {
+graph::ResourceState PhysicalResources::importedState(const std::string& name) const {
   if (auto e = externalStates_.find(name); e != externalStates_.end() && !e->second.empty()) return e->second.front();
   auto it = persistent_.find(name);
-  return it == persistent_.end() || it->second.states.empty() ? graph::ImageState{} : it->second.states.front();
+  return it == persistent_.end() || it->second.states.empty() ? graph::ResourceState{} : it->second.states.front();
 }
 
 PhysicalResources::Persistent& PhysicalResources::persistent(const graph::ResourceDecl& decl) {

@@ -23,10 +23,10 @@ class PhysicalResources {
   PhysicalResources& operator=(const PhysicalResources&) = delete;
 
   // State the history pair `base`'s previous or current image was left in, for createHistory.
-  graph::ImageState historyState(const std::string& base, bool current) const;
+  graph::ResourceState historyState(const std::string& base, bool current) const;
   // State an imported resource (external or not) was left in by the last execution that used it;
   // none (UNDEFINED) before that. What the next frame's import must declare.
-  graph::ImageState importedState(const std::string& name) const;
+  graph::ResourceState importedState(const std::string& name) const;
   // Physical image or buffer of every used resource, indexed by ResourceId (null where unused).
   std::vector<graph::PhysicalResource> prepare(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled);
   // Carries final states of imported and history resources over to the next execution.
@@ -40,7 +40,7 @@ class PhysicalResources {
   struct Persistent {
     GpuImage image;
     GpuBuffer buffer;
-    std::vector<graph::ImageState> states;  // per subresource
+    std::vector<graph::ResourceState> states;  // per subresource
   };
   std::string historyKey(const std::string& base, bool current) const;  // "<base>#0|1"
   std::string physicalKey(const graph::ResourceDecl& decl) const;
@@ -52,7 +52,7 @@ class PhysicalResources {
   VulkanContext& vk_;
   std::map<std::string, Persistent> persistent_;  // imported by name; history by "<base>#0|1"
   std::map<std::string, int> historyParity_;      // history base name -> physical index of "current"
-  std::map<std::string, std::vector<graph::ImageState>> externalStates_;  // external imports by name (they own nothing here)
+  std::map<std::string, std::vector<graph::ResourceState>> externalStates_;  // external imports by name (they own nothing here)
   std::string transientSignature_;
   std::map<std::string, GpuImage> transientImages_;
   std::map<std::string, GpuBuffer> transientBuffers_;

@@ -9,8 +9,8 @@ namespace aor {
 FrameBuilder::FrameBuilder(graph::RenderGraph& graph, PipelineCache& pipelines, Setup setup)
     : graph_(graph), pipelines_(pipelines), setup_(std::move(setup)) {}
 
-graph::ImageState FrameBuilder::historyState(const std::string& base, bool current) const {
-  return setup_.historyStates ? setup_.historyStates(base, current) : graph::ImageState{};
+graph::ResourceState FrameBuilder::historyState(const std::string& base, bool current) const {
+  return setup_.historyStates ? setup_.historyStates(base, current) : graph::ResourceState{};
 }
 
 graph::HistoryPair FrameBuilder::history(const std::string& name, graph::ImageDesc desc) {

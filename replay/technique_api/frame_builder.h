@@ -2,7 +2,7 @@
 // What a technique's addPasses() gets for one frame: the frame's render graph with the shared front
 // already declared (capture inputs, linear distance, view-space normals; whatever nothing reads is
 // culled), the camera, history, the pipelines, and where to put its output. The host
-// (frame_graph.cpp) adds the read-back of the output and of any debug views afterwards.
+// (built_frame.cpp) adds the read-back of the output and of any debug views afterwards.
 #include <functional>
 #include <map>
 #include <set>
@@ -40,7 +40,7 @@ struct OutputLayout {
 
 // The state earlier frames left a history image in (`base` as "ao_history"; `current`: the image
 // this frame writes). In a replay the graph's runtime tracks it; empty means nothing ran before.
-using HistoryStates = std::function<graph::ImageState(const std::string& base, bool current)>;
+using HistoryStates = std::function<graph::ResourceState(const std::string& base, bool current)>;
 
 // One debug view or counter the run asked for, read back after the frame.
 struct DebugReadback {
@@ -127,9 +127,9 @@ class FrameBuilder {
                       distance = graph::kNoResource, reconstructedNormals = graph::kNoResource,
                       viewNormals = graph::kNoResource, previousDistance = graph::kNoResource;
   };
-  // The host declares the front before the technique runs (blocks/front.cpp).
+  // The host declares the front before the technique runs (shared_passes/front.cpp).
   void setFront(const Front& front) { front_ = front; }
-  graph::ImageState historyState(const std::string& base, bool current) const;
+  graph::ResourceState historyState(const std::string& base, bool current) const;
 
  private:
   graph::RenderGraph& graph_;

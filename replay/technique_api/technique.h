@@ -64,7 +64,7 @@ struct ReplaySetup {
 };
 
 // What the stress suite holds a technique to beyond outputs that are finite, in [0,1] and replay
-// bit-identically (tests/gpu/stress_test.cpp runs every registered technique through it).
+// bit-identically (tests/techniques/stress_test.cpp runs every registered technique through it).
 struct AccuracyBounds {
   // Mean visibility of a flat floor's surface seen at 1 degree grazing: a plane occludes nothing, so
   // 1 is exact; how far below that the technique's sampling and precision may land.

@@ -1,6 +1,6 @@
 #version 450
 // User techniques' `linear_depth` input: the front's linear view distance with sky (kSkyDistance,
-// -1) as 0, as techniques/FORMAT.md promises.
+// -1) as 0, as user_techniques/FORMAT.md promises.
 #extension GL_GOOGLE_include_directive : require
 #include "../common/common.h"
 

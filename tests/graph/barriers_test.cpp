@@ -9,20 +9,20 @@
 namespace aor::graph::testing {
 namespace {
 
-constexpr ImageState kSampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+constexpr ResourceState kSampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-constexpr ImageState kStorageRead{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+constexpr ResourceState kStorageRead{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL};
-constexpr ImageState kStorageWrite{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+constexpr ResourceState kStorageWrite{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL};
-constexpr ImageState kTransferRead{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+constexpr ResourceState kTransferRead{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
                                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
-constexpr ImageState kTransferWrite{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+constexpr ResourceState kTransferWrite{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-constexpr ImageState kClearWrite{VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+constexpr ResourceState kClearWrite{VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-constexpr ImageState kFresh{};
+constexpr ResourceState kFresh{};
 
 #define EXPECT_STATE(actual, expected)                                              \
   EXPECT_TRUE(sameState(actual, expected)) << "got " << stateText(actual) << "\n" \
@@ -74,7 +74,7 @@ TEST(GraphBarriers, PipelineBarriersAreExactlyTheNeededOnes) {
   // ao_blurred reuses normals_reconstructed's memory: its first barrier waits for gtao's read.
   b = barriersOn(c, p.spatial, p.aoBlurred);
   ASSERT_EQ(b.size(), 1u);
-  EXPECT_STATE(b[0].before, (ImageState{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  EXPECT_STATE(b[0].before, (ResourceState{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
                                         VK_IMAGE_LAYOUT_UNDEFINED}));
   EXPECT_STATE(b[0].after, kStorageWrite);
@@ -117,7 +117,7 @@ TEST(GraphBarriers, HistoryPreviousInitialStateDecidesTheFirstBarrier) {
   }
   // Already SHADER_READ_ONLY but the last write is still pending: barrier without layout change.
   {
-    const ImageState pending{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+    const ResourceState pending{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     Pipeline p = buildPipeline({.historyPreviousState = pending});
     const CompiledGraph c = p.graph.compile();
@@ -132,7 +132,7 @@ TEST(GraphBarriers, HistoryPreviousInitialStateDecidesTheFirstBarrier) {
 TEST(GraphBarriers, HistoryHandOverAcrossFrames) {
   // Two physical images swap roles every frame; each frame's initial states are the final states
   // of the image in the previous frame. Every frame must pass the checker.
-  ImageState image[2] = {kFresh, kFresh};
+  ResourceState image[2] = {kFresh, kFresh};
   int currentImage = 0;
   bool valid = false;
   for (int frame = 0; frame < 4; ++frame) {
@@ -171,7 +171,7 @@ TEST(GraphBarriers, ReadModifyWriteInOnePassNeedsOneBarrier) {
   const auto b = barriersOn(c, 1, t);
   ASSERT_EQ(b.size(), 1u);
   EXPECT_STATE(b[0].before, kStorageWrite);
-  EXPECT_STATE(b[0].after, (ImageState{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  EXPECT_STATE(b[0].after, (ResourceState{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                        VK_IMAGE_LAYOUT_GENERAL}));
@@ -192,7 +192,7 @@ TEST(GraphBarriers, MixedLayoutsInOnePassUseGeneral) {
   g.addPass("sink", [&](PassBuilder& b) { b.read(t); b.sideEffect(); });
   const CompiledGraph c = g.compile();
   checkCompiled(g, c);
-  const ImageState need = requiredState(g.passes()[1], t);
+  const ResourceState need = requiredState(g.passes()[1], t);
   EXPECT_EQ(need.layout, VK_IMAGE_LAYOUT_GENERAL);
   EXPECT_EQ(need.access, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const auto b = barriersOn(c, 1, t);
@@ -225,7 +225,7 @@ TEST(GraphBarriers, WarAfterReadersInDifferentStagesAccumulates) {
   // TransferRead each layout has one stage, so build it through an imported image whose initial
   // state already has a reader (COPY) in GENERAL, then a compute storage read, then a write.
   RenderGraph g;
-  const ImageState copyRead{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+  const ResourceState copyRead{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
                             VK_IMAGE_LAYOUT_GENERAL};
   const ResourceId t = g.importImage("img", {8, 8, VK_FORMAT_R16_SFLOAT}, copyRead);
   const ResourceId o = g.importImage("out", {8, 8, VK_FORMAT_R16_SFLOAT});
@@ -290,7 +290,7 @@ TEST(GraphBarriers, AliasedTransientWaitsForPreviousMemberWrite) {
   ASSERT_EQ(c.resources[scratch].memorySlot, c.resources[next].memorySlot);
   const auto b = barriersOn(c, 1, next);
   ASSERT_EQ(b.size(), 1u);
-  EXPECT_STATE(b[0].before, (ImageState{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  EXPECT_STATE(b[0].before, (ResourceState{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                         VK_IMAGE_LAYOUT_UNDEFINED}));
 }
 

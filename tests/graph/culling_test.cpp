@@ -163,7 +163,7 @@ TEST(GraphHistory, NoMemoryWhenTemporalIsCulled) {
 TEST(GraphHistory, NamesAndValidity) {
   RenderGraph g;
   const ImageDesc d{16, 16, VK_FORMAT_R16G16_SFLOAT};
-  const ImageState prev{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  const ResourceState prev{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL};
   const HistoryPair valid = g.createHistory("ao", d, true, prev);
   const HistoryPair invalid = g.createHistory("other", d, false);

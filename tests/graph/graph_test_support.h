@@ -32,9 +32,9 @@ struct PipelineOptions {
   Readback readback = Readback::Temporal;
   uint32_t width = 1920;
   uint32_t height = 1080;
-  ImageState historyPreviousState{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+  ResourceState historyPreviousState{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
-  ImageState historyCurrentState{};
+  ResourceState historyCurrentState{};
 };
 
 struct Pipeline {
@@ -145,10 +145,10 @@ inline size_t barrierCount(const CompiledGraph& c, ResourceId id) {
   }
   return n;
 }
-inline bool sameState(const ImageState& a, const ImageState& b) {
+inline bool sameState(const ResourceState& a, const ResourceState& b) {
   return a.stage == b.stage && a.access == b.access && a.layout == b.layout;
 }
-inline std::string stateText(const ImageState& s) {
+inline std::string stateText(const ResourceState& s) {
   return stageNames(s.stage) + "/" + accessNames(s.access) + "/" + layoutName(s.layout);
 }
 
@@ -212,7 +212,7 @@ inline bool ordered(const std::vector<Bar>& bars, const Point& x, const Point& y
   if (y.isTransition) return reach[y.barrier] && avail[y.barrier];
   for (size_t k = 0; k < n; ++k) {
     if (!reach[k] || bars[k].pass > y.op.pass) continue;
-    const ImageState& dst = bars[k].barrier.after;
+    const ResourceState& dst = bars[k].barrier.after;
     if (!subset(y.op.stage, dst.stage)) continue;
     if (memory && (!avail[k] || !subset(y.op.access, dst.access))) continue;
     return true;
@@ -293,7 +293,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
   std::vector<std::vector<Op>> ops(res.size());
   for (size_t i = 0; i < c.passes.size(); ++i) {
     for (const auto& [id, a, range_, ifRead_] : passes[c.passes[i].pass].accesses) {
-      const ImageState need = requiredState(a);
+      const ResourceState need = requiredState(a);
       ops[id].push_back(Op{static_cast<int>(i), need.stage, need.access, isWrite(a), need.layout});
     }
   }
@@ -382,7 +382,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
       ASSERT_LT(b.resource, res.size());
       EXPECT_TRUE(barriered.insert(b.resource).second)
           << "two barriers on " << res[b.resource].name << " before " << pass.name;
-      const ImageState need = requiredState(pass, b.resource);
+      const ResourceState need = requiredState(pass, b.resource);
       EXPECT_NE(need.access, VK_ACCESS_2_NONE)
           << "barrier on " << res[b.resource].name << " before " << pass.name
           << ", which does not access it";
@@ -457,7 +457,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
     // Hazards: every conflicting pair of accesses is ordered by a barrier chain. For imported and
     // history images, the work that left the initial state counts as an access before pass 0.
     std::vector<Op> h = o;
-    const ImageState& init = res[id].initialState;
+    const ResourceState& init = res[id].initialState;
     if (!transient && (init.stage != 0 || init.access != 0)) {
       const VkAccessFlags2 writeBits = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                                        VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
@@ -518,7 +518,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
     for (size_t k = 1; k < touching.size(); ++k) {
       const PassDecl& a = passes[c.passes[touching[k - 1]].pass];
       const PassDecl& p = passes[c.passes[touching[k]].pass];
-      const ImageState sa = requiredState(a, id), sp = requiredState(p, id);
+      const ResourceState sa = requiredState(a, id), sp = requiredState(p, id);
       const bool readsOnly = !(sa.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                                             VK_ACCESS_2_TRANSFER_WRITE_BIT)) &&
                              !(sp.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
@@ -534,7 +534,7 @@ inline void checkCompiled(const RenderGraph& g, const CompiledGraph& c) {
     // Final state: the layout after the last access, covering the last pass's accesses.
     const CompiledResource& r = c.resources[id];
     EXPECT_EQ(r.finalState.layout, layout);
-    const ImageState last = requiredState(passes[c.passes[o.back().pass].pass], id);
+    const ResourceState last = requiredState(passes[c.passes[o.back().pass].pass], id);
     EXPECT_TRUE(subset(last.stage, r.finalState.stage) && subset(last.access, r.finalState.access))
         << "finalState " << stateText(r.finalState) << " misses the last access " << stateText(last);
     if (last.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT)) {
@@ -589,7 +589,7 @@ inline RandomGraph randomGraph(uint32_t seed) {
   static const VkFormat kFormats[] = {VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT,
                                       VK_FORMAT_R16G16_SFLOAT, VK_FORMAT_R32_SFLOAT,
                                       VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
-  static const ImageState kStates[] = {
+  static const ResourceState kStates[] = {
       {},
       {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL},
       {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},

@@ -1,6 +1,6 @@
 // The graph's capacity beyond one-level images: mip levels and array layers (producers, culling and
 // barriers per subresource, merged into ranges), buffers (hazards without layouts) and writes made
-// only when read. No GPU: tests/gpu/graph_capacity_test.cpp runs the same shapes on lavapipe.
+// only when read. No GPU: tests/runtime/graph_capacity_test.cpp runs the same shapes on lavapipe.
 #include <gtest/gtest.h>
 
 #include "graph/render_graph.h"

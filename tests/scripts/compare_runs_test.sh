@@ -2,7 +2,7 @@
 # bench/compare_runs.sh gives its S run one GTAO slice more than A ran with, whatever preset or
 # --set the extra run args choose. Runs the script against a stand-in `aoreplay` (no GPU, no
 # timing): `run` records its arguments and writes a report.json whose settings.slices follows
-# --preset (low 1, medium 2, high 3, ultra 9, as replay/pipeline/settings.cpp) and the last
+# --preset (low 1, medium 2, high 3, ultra 9, as replay/replay_loop/settings.cpp) and the last
 # --set slices=N; `compare` writes a `same` verdict. Also: REJUDGE=1 replays nothing.
 #   bash tests/scripts/compare_runs_test.sh SCRATCH_DIR
 set -euo pipefail

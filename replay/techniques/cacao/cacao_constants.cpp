@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "blocks/camera.h"
+#include "shared_passes/camera.h"
 #include "techniques/cacao/cacao_settings.h"
 
 namespace aor {

@@ -1,6 +1,6 @@
 // Pass 1 of seed 000: GTAO horizon search (shaders/gtao/gtao.comp, math in shaders/gtao/gtao.h).
-#include "blocks/blocks.h"
-#include "blocks/camera.h"
+#include "shared_passes/shared_passes.h"
+#include "shared_passes/camera.h"
 #include "runtime/pass_context.h"
 #include "techniques/gtao/gtao_settings.h"
 
@@ -41,7 +41,7 @@ GtaoInputs gtaoInputs(const FrameBuilder& frame) {
 graph::ResourceId addGtaoPass(FrameBuilder& frame, const GtaoSettings& settings, const GtaoInputs& inputs) {
   auto constants = gtaoConstants(frame.camera(), settings);
   glm::uvec2 size(aoWorkingSize(frame.camera(), settings));
-  auto ao = frame.graph().createImage("ao_noisy", {size.x, size.y, blocks::seed000AoFormat(settings.bent)});
+  auto ao = frame.graph().createImage("ao_noisy", {size.x, size.y, shared_passes::aoImageFormat(settings.bent)});
   std::vector<SpecializationValue> specialization{
       spec(shader::kGtaoSpecSlices, settings.slices), spec(shader::kGtaoSpecSteps, settings.steps),
       spec(shader::kGtaoSpecBent, settings.bent),     spec(shader::kGtaoSpecViewNormals, inputs.viewSpaceNormals),

@@ -38,7 +38,7 @@ glm::ivec2 aoWorkingSize(const FrameCamera& camera, const GtaoSettings& settings
 // Push constants of the GTAO pass for a frame (shared with the CPU mirror).
 shader::GtaoConstants gtaoConstants(const FrameCamera& camera, const GtaoSettings& settings);
 
-// The GTAO pass (shaders/gtao/gtao.comp): writes `ao_noisy` in seed000AoFormat(bent) at
+// The GTAO pass (shaders/gtao/gtao.comp): writes `ao_noisy` in aoImageFormat(bent) at
 // aoWorkingSize. `viewSpaceNormals` tells captured (world space) from reconstructed normals.
 struct GtaoInputs {
   graph::ResourceId distance;

@@ -1,6 +1,6 @@
 // Seed 000: the GTAO three-pass pipeline (GTAO -> spatial bilateral -> temporal reprojection), as a
 // technique module: its keys, presets and passes. Seed 000 point by point: shaders/README.md.
-#include "blocks/blocks.h"
+#include "shared_passes/shared_passes.h"
 #include "techniques/gtao/gtao_settings.h"
 #include "techniques/registry.h"
 
@@ -20,10 +20,10 @@ void addGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
   auto noisy = addGtaoPass(frame, g, gtaoInputs(frame));
   frame.debugView("linear_depth", frame.linearDistance());
   frame.debugView("ao_raw", noisy);
-  blocks::DenoiseInput in{noisy, g.bent, aoResolutionDivisor(g)};
-  in.ao = blocks::addSeed000Spatial(frame, in);
+  shared_passes::DenoiseInput in{noisy, g.bent, aoResolutionDivisor(g)};
+  in.ao = shared_passes::addSpatialDenoise(frame, in);
   frame.debugView("ao_denoised", in.ao);
-  frame.setOutput(blocks::addSeed000Temporal(frame, in),
+  frame.setOutput(shared_passes::addTemporalDenoise(frame, in),
                   g.bent ? OutputLayout::bentThenVisibility() : OutputLayout::visibilityOnly());
 }
 
@@ -39,8 +39,8 @@ Technique makeGtao() {
       floatParameter(kFalloff, shader::kGtaoFalloffRange, 0, 1, "fraction of the radius that fades; 0 = hard cut-off", true),
       floatParameter(kPower, 1, 0.05, 16, "final exponent on visibility, 1 = none", true),
       floatParameter(kThin, 0, 0, 8, "thin-occluder compensation, 0 = off", true),
-      blocks::spatialParameter(),
-      blocks::temporalParameter(0.9),
+      shared_passes::spatialParameter(),
+      shared_passes::temporalParameter(0.9),
       boolParameter(kBent, true, "bent normals computed and written (bent.X/Y/Z)"),
       boolParameter(kHalfRes, false, "GTAO and the spatial blur at half resolution, upsampled by the last pass"),
   };
@@ -53,8 +53,8 @@ Technique makeGtao() {
                   {"ao_raw", "GTAO's output before denoising (visibility in A with bent=1, else R)"},
                   {"ao_denoised", "after the spatial blur (GTAO's output with spatial=0)"}};
   t.addPasses = addGtaoPipeline;
-  t.history = blocks::seed000TemporalHistory;
-  t.withoutHistory = blocks::seed000WithoutTemporal;
+  t.history = shared_passes::temporalDenoiseHistory;
+  t.withoutHistory = shared_passes::withoutTemporalDenoise;
   return t;
 }
 
@@ -69,8 +69,8 @@ void forEachKey(Settings& g, Visit&& visit) {
   visit(kFalloff, g.falloff);
   visit(kPower, g.power);
   visit(kThin, g.thin);
-  visit(blocks::kSpatialKey, g.spatial);
-  visit(blocks::kTemporalKey, g.temporal);
+  visit(shared_passes::kSpatialKey, g.spatial);
+  visit(shared_passes::kTemporalKey, g.temporal);
   visit(kBent, g.bent);
   visit(kHalfRes, g.halfRes);
 }

@@ -5,7 +5,7 @@
 // reference of captures without a ray-traced one.
 #include <fmt/format.h>
 
-#include "blocks/blocks.h"
+#include "shared_passes/shared_passes.h"
 #include "runtime/pass_context.h"
 #include "techniques/gtao/gtao_settings.h"
 #include "techniques/registry.h"
@@ -21,7 +21,7 @@ void addReferencePass(FrameBuilder& frame, const Settings& settings) {
   GtaoSettings g = gtaoSettings(settings);  // radius, falloff, power, thin and bent: the same meaning as gtao's
   GtaoInputs inputs = gtaoInputs(frame);
   auto constants = gtaoConstants(frame.camera(), g);
-  auto ao = frame.graph().createImage("ao_reference", {frame.size().x, frame.size().y, blocks::seed000AoFormat(g.bent)});
+  auto ao = frame.graph().createImage("ao_reference", {frame.size().x, frame.size().y, shared_passes::aoImageFormat(g.bent)});
   std::vector<SpecializationValue> specialization{spec(shader::kGtaoSpecSlices, kReferenceSlices),
                                                   spec(shader::kGtaoSpecBent, g.bent),
                                                   spec(shader::kGtaoSpecViewNormals, inputs.viewSpaceNormals),

@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "blocks/blocks.h"
-#include "blocks/camera.h"
+#include "shared_passes/shared_passes.h"
+#include "shared_passes/camera.h"
 #include "capture/capture.h"
 #include "core/input_error.h"
 #include "runtime/pass_context.h"
@@ -90,8 +90,8 @@ GpuBuffer uploadStorageBuffer(VulkanContext& vk, const void* data, uint64_t byte
   return buffer;
 }
 
-constexpr graph::ImageState kUploaded{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
-constexpr graph::ImageState kBuilt{VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+constexpr graph::ResourceState kUploaded{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr graph::ResourceState kBuilt{VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                                    VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED};
 
 double msSince(std::chrono::steady_clock::time_point start) {
@@ -235,7 +235,7 @@ struct TraceScene {
 };
 
 TraceScene importScene(graph::RenderGraph& g, const RtaoState& state) {
-  auto importOne = [&](const char* name, uint64_t bytes, const GpuBuffer& buffer, const graph::ImageState& after) {
+  auto importOne = [&](const char* name, uint64_t bytes, const GpuBuffer& buffer, const graph::ResourceState& after) {
     return state.vk ? g.importExternalBuffer(name, {bytes}, buffer, after) : g.importBuffer(name, {bytes});
   };
   if (state.rayQuery)

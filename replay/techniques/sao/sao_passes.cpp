@@ -4,7 +4,7 @@
 #include <bit>
 #include <cmath>
 
-#include "blocks/camera.h"
+#include "shared_passes/camera.h"
 #include "blocks/linearize_depth.h"
 #include "core/input_error.h"
 #include "runtime/pass_context.h"

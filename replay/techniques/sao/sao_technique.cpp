@@ -2,7 +2,7 @@
 // layers -> rotated-grid pyramid -> Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012;
 // the second layer as in the deep G-buffer paper) -> separable bilateral blur. Seed 004 point by
 // point: README.md in this folder.
-#include "blocks/blocks.h"
+#include "shared_passes/shared_passes.h"
 #include "capture/capture.h"
 #include "core/input_error.h"
 #include "techniques/registry.h"
@@ -39,7 +39,7 @@ void addSaoPipeline(FrameBuilder& frame, const Settings& settings) {
   auto blurred = addSaoBlurPass(frame, s, horizontal, csz, false);
   frame.debugView("ao", blurred);
   // The shared temporal block (temporal > 0 in a multi-frame replay), else the blurred AO itself.
-  frame.setOutput(blocks::addSeed000Temporal(frame, {blurred, false, 1}), OutputLayout::visibilityOnly());
+  frame.setOutput(shared_passes::addTemporalDenoise(frame, {blurred, false, 1}), OutputLayout::visibilityOnly());
 }
 
 void checkSaoCapture(const Settings& settings, const Capture& capture) {
@@ -71,7 +71,7 @@ Technique makeSao() {
       floatParameter(kEdgeSharpness, 1, 0, 100, "blur's depth edge sharpness, 0 = plain Gaussian", true),
       boolParameter(kCsz32, false, "camera-space Z as R32F instead of R16F"),
       dual,
-      blocks::temporalParameter(0),
+      shared_passes::temporalParameter(0),
   };
   t.presets = {samplesPreset("low", 9), samplesPreset("medium", 13), samplesPreset("high", 19), samplesPreset("ultra", 31)};
   t.defaultPreset = "high";
@@ -85,8 +85,8 @@ Technique makeSao() {
                   {"ao_blur_h", "after the horizontal blur"},
                   {"ao", "after both blur legs (the output unless temporal > 0)"}};
   t.addPasses = addSaoPipeline;
-  t.history = blocks::seed000TemporalHistory;
-  t.withoutHistory = blocks::seed000WithoutTemporal;
+  t.history = shared_passes::temporalDenoiseHistory;
+  t.withoutHistory = shared_passes::withoutTemporalDenoise;
   t.checkCapture = checkSaoCapture;
   return t;
 }
@@ -105,7 +105,7 @@ SaoSettings saoSettings(const Settings& s) {
   o.edgeSharpness = s.f(kEdgeSharpness);
   o.csz32 = s.b(kCsz32);
   o.dualLayer = SaoDualLayer(s.i(kDualLayer));
-  o.temporal = s.f(blocks::kTemporalKey);
+  o.temporal = s.f(shared_passes::kTemporalKey);
   return o;
 }
 

@@ -46,7 +46,7 @@ std::vector<UserBinding> userPassBindings(const UserTechniqueSpec& spec, const U
 std::string userPassHeader(const UserTechniqueSpec& spec, const UserPass& pass) {
   std::string h;
   h += fmt::format("// aoreplay.glsl: generated for pass '{}' of technique '{}' ({}).\n", pass.name, spec.name, printable(spec.display));
-  h += "// `aoreplay technique-header FILE.json PASS` prints it; techniques/FORMAT.md documents it.\n";
+  h += "// `aoreplay technique-header FILE.json PASS` prints it; user_techniques/FORMAT.md documents it.\n";
   h += "#ifndef AOREPLAY_GLSL\n#define AOREPLAY_GLSL\n\n";
   h += fmt::format("// One invocation per pixel of '{}' ({} scale), in whole workgroups: return where\n", pass.writes[0].name,
                    pass.writes[0].half ? "half" : "full");

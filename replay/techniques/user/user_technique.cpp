@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "blocks/blocks.h"
+#include "shared_passes/shared_passes.h"
 #include "core/input_error.h"
 #include "runtime/pass_context.h"
 #include "techniques/registry.h"
@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kHistoryBase = "user_history";
-constexpr double kSeed000TemporalDefault = 0.9;  // gtao's
+constexpr double kTemporalDenoiseDefault = 0.9;  // gtao's
 
 struct UserTechnique {
   UserTechniqueSpec spec;
@@ -124,7 +124,7 @@ History declareHistory(FrameBuilder& frame, VkFormat format) {
   }
   if (h.read == graph::kNoResource) {
     h.read = frame.graph().createImage("history_invalid", desc);
-    blocks::addFillPass(frame.graph(), h.read, 1.0f);
+    shared_passes::addFillPass(frame.graph(), h.read, 1.0f);
   }
   return h;
 }
@@ -229,9 +229,9 @@ void addUserPasses(const UserTechnique& ut, FrameBuilder& frame, const Settings&
 
   graph::ResourceId final = images.at(spec.output);
   if (seed000) {
-    blocks::DenoiseInput in{final, false, 1};
-    in.ao = blocks::addSeed000Spatial(frame, in);
-    final = blocks::addSeed000Temporal(frame, in);
+    shared_passes::DenoiseInput in{final, false, 1};
+    in.ao = shared_passes::addSpatialDenoise(frame, in);
+    final = shared_passes::addTemporalDenoise(frame, in);
     if (history.current != graph::kNoResource) addHistoryCopyPass(g, final, history.current);
   }
   frame.setOutput(final, OutputLayout::visibilityOnly());
@@ -239,7 +239,7 @@ void addUserPasses(const UserTechnique& ut, FrameBuilder& frame, const Settings&
 
 HistoryNeeds userHistory(const UserTechniqueSpec& spec, const Settings& settings) {
   HistoryNeeds needs;
-  if (spec.denoise == UserDenoise::Seed000) needs = blocks::seed000TemporalHistory(settings);
+  if (spec.denoise == UserDenoise::Seed000) needs = shared_passes::temporalDenoiseHistory(settings);
   if (readsHistory(spec)) {
     needs.keeps = true;
     needs.whyNot.clear();
@@ -276,8 +276,8 @@ Technique makeTechnique(const UserTechnique& ut) {
   t.parameters.push_back(radiusParameter(1.0));
   for (const auto& p : spec.parameters) t.parameters.push_back(p);
   if (spec.denoise == UserDenoise::Seed000) {
-    t.parameters.push_back(blocks::spatialParameter());
-    t.parameters.push_back(blocks::temporalParameter(kSeed000TemporalDefault));
+    t.parameters.push_back(shared_passes::spatialParameter());
+    t.parameters.push_back(shared_passes::temporalParameter(kTemporalDenoiseDefault));
   }
   t.presets = spec.presets;
   t.defaultPreset = spec.defaultPreset;
@@ -288,7 +288,7 @@ Technique makeTechnique(const UserTechnique& ut) {
   t.history = [&ut](const Settings& settings) { return userHistory(ut.spec, settings); };
   t.checkDeviceLimits = [&ut](const DeviceInfo& device) { checkUserDeviceLimits(ut, device); };
   if (spec.denoise == UserDenoise::Seed000 && !readsHistory(spec))
-    t.withoutHistory = blocks::seed000WithoutTemporal;
+    t.withoutHistory = shared_passes::withoutTemporalDenoise;
   return t;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// A user's technique (`--technique PATH`, techniques/FORMAT.md) as a Technique like the built-ins:
+// A user's technique (`--technique PATH`, user_techniques/FORMAT.md) as a Technique like the built-ins:
 // its technique.json read and checked, every pass compiled (shader_compiler.h), then registered
 // under its name for the rest of the process, so that the run, sweep, graph, ao_bench and the
 // report treat it as any other.

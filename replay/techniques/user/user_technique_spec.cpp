@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "blocks/blocks.h"
+#include "shared_passes/shared_passes.h"
 #include "core/input_error.h"
 #include "core/json_input.h"
 #include "core/plain_text.h"
@@ -46,7 +46,7 @@ const std::set<std::string>& glslReservedWords() {
 }
 
 const std::vector<std::string>& sharedKeys() {
-  static const std::vector<std::string> keys = {kRadiusKey, blocks::kSpatialKey, blocks::kTemporalKey, "technique"};
+  static const std::vector<std::string> keys = {kRadiusKey, shared_passes::kSpatialKey, shared_passes::kTemporalKey, "technique"};
   return keys;
 }
 

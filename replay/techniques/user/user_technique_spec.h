@@ -1,6 +1,6 @@
 #pragma once
 // A user's technique as its technique.json declares it (format "aoreplay-technique" version 1,
-// techniques/FORMAT.md), read and checked in full before anything is compiled or run: unknown
+// user_techniques/FORMAT.md), read and checked in full before anything is compiled or run: unknown
 // keys, bad names, reads of undeclared images and writes nothing reads are InputErrors naming the
 // file and the key ("passes[1].reads[0]").
 #include <filesystem>

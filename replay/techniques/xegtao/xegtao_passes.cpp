@@ -4,8 +4,8 @@
 #include <bit>
 #include <cmath>
 
-#include "blocks/blocks.h"
-#include "blocks/camera.h"
+#include "shared_passes/shared_passes.h"
+#include "shared_passes/camera.h"
 #include "runtime/pass_context.h"
 #include "techniques/xegtao/xegtao_settings.h"
 
@@ -55,7 +55,7 @@ XeGtaoSettings xegtaoSettings(const Settings& s) {
   x.denoisePasses = s.i("denoise_passes");
   x.depth32 = s.b("depth32");
   x.bent = s.b("bent");
-  x.temporal = s.f(blocks::kTemporalKey);
+  x.temporal = s.f(shared_passes::kTemporalKey);
   return x;
 }
 
@@ -165,7 +165,7 @@ graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& se
     bool last = i == passes - 1;
     // Passes before the last keep XeGTAO's working format (its ping-pong pair, as transients).
     graph::ResourceId target =
-        last ? g.createImage("ao_denoised", {size.x, size.y, blocks::seed000AoFormat(settings.bent)})
+        last ? g.createImage("ao_denoised", {size.x, size.y, shared_passes::aoImageFormat(settings.bent)})
              : g.createImage("ao_term_" + std::to_string(i + 1), {size.x, size.y, aoTermFormat(settings.bent)});
     std::string shader = last ? "xegtao/denoise_last" : "xegtao/denoise";
     auto edges = working.edges;

@@ -3,7 +3,7 @@
 // xegtao_passes.cpp), the shared temporal block as an option. Point by point: README.md here.
 #include <fmt/format.h>
 
-#include "blocks/blocks.h"
+#include "shared_passes/shared_passes.h"
 #include "techniques/registry.h"
 #include "techniques/xegtao/xegtao_settings.h"
 
@@ -26,8 +26,8 @@ void addXeGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
   frame.debugView("ao_raw", working.aoTerm);
   frame.debugView("ao_denoised", denoised);
 
-  blocks::DenoiseInput in{denoised, x.bent, 1};
-  frame.setOutput(blocks::addSeed000Temporal(frame, in),
+  shared_passes::DenoiseInput in{denoised, x.bent, 1};
+  frame.setOutput(shared_passes::addTemporalDenoise(frame, in),
                   x.bent ? OutputLayout::bentThenVisibility() : OutputLayout::visibilityOnly());
 }
 
@@ -55,7 +55,7 @@ Technique makeXeGtao() {
       intParameter("denoise_passes", 1, 1, 3, "DenoisePasses: edge-aware 3x3 passes (1 sharp, 2 medium, 3 soft)"),
       boolParameter("depth32", false, "R32F depth MIP chain instead of R16F (XE_GTAO_FP32_DEPTHS)"),
       boolParameter("bent", false, "bent normals computed and written (XE_GTAO_COMPUTE_BENT_NORMALS)"),
-      blocks::temporalParameter(0.0),
+      shared_passes::temporalParameter(0.0),
   };
   t.presets = {{"low", {{"slices", 1}, {"steps", 2}}},
                {"medium", {{"slices", 2}, {"steps", 2}}},
@@ -76,8 +76,8 @@ Technique makeXeGtao() {
       {"mip_taps", "report.json frames[i].debug.mip_taps: the main pass's depth taps per MIP level 0-4"},
   };
   t.addPasses = addXeGtaoPipeline;
-  t.history = blocks::seed000TemporalHistory;
-  t.withoutHistory = blocks::seed000WithoutTemporal;
+  t.history = shared_passes::temporalDenoiseHistory;
+  t.withoutHistory = shared_passes::withoutTemporalDenoise;
   return t;
 }
 
