@@ -89,17 +89,22 @@ class Target:
         control = connect(self.rd, ident, min(self.deadline, time.time() + patience))
         if control is None:
             return False
+        if not descends_from(control.GetPID(), self.launched):
+            # Another RenderDoc-injected program took the port: a concurrent capture's, never ours.
+            control.Shutdown()
+            return False
         self.control.Shutdown()
         self.control, self.ident = control, ident
         self.pids.add(control.GetPID())
         return True
 
-    def descendants(self):
-        """Target-control idents of the launched process's descendants (RenderDoc 1.24 announces no
-        child of a wrapper script that waits for it): found by enumerating the targets."""
+    def descendants(self, include_current=False):
+        """Target-control idents of the launched process and its descendants (RenderDoc 1.24
+        announces no child of a wrapper script that waits for it): found by enumerating the
+        targets, each asked for its PID without taking it from a client it has."""
         found, ident = [], self.rd.EnumerateRemoteTargets("", 0)
         while ident and len(found) < 64:
-            if ident != self.ident:
+            if include_current or ident != self.ident:
                 control = self.rd.CreateTargetControl("", ident, "aoreplay", False)
                 if control is not None:
                     if control.Connected() and descends_from(control.GetPID(), self.launched):
@@ -107,6 +112,17 @@ class Target:
                     control.Shutdown()
             ident = self.rd.EnumerateRemoteTargets("", ident)
         return found
+
+    def reconnect(self, patience):
+        """After a disconnect (a wrapper that execs the program): the same process again, at its old
+        port or, when another program took that one meanwhile (a concurrent capture), at whichever
+        port it got."""
+        until = min(self.deadline, time.time() + patience)
+        while time.time() < until:
+            if any(self.switch_to(i, 0.5) for i in self.descendants(include_current=True)):
+                return True
+            time.sleep(0.05)
+        return False
 
     def follow_child(self):
         if time.time() < self.next_look:
@@ -125,7 +141,7 @@ class Target:
                 self.pids.add(message.newChild.processId)
                 self.switch_to(message.newChild.ident, 5.0)
             elif message.type == t.Disconnected:
-                if not self.switch_to(self.ident, 2.0):
+                if not self.reconnect(2.0):
                     raise CaptureFailure("", "%s exited before %s" % (self.program, WAITING_FOR[wanted]))
             elif message.type == wanted:
                 return message
