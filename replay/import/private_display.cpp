@@ -7,8 +7,6 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -34,14 +32,6 @@ std::string readDisplayNumber(int fd) {
     text.append(buffer, size_t(n));
   }
   return text.substr(0, text.find('\n'));
-}
-
-std::string lastLine(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line, last = "(nothing)";
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
 }
 
 void stop(int pid) {
@@ -74,7 +64,7 @@ PrivateDisplay::PrivateDisplay(const std::filesystem::path& capture, const std::
   if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos) {
     stop(pid_);
     throw std::runtime_error(fmt::format("Xvfb did not start a display (it has {} s); its last output: {}",
-                                         kStartMilliseconds / 1000, lastLine(logFile)));
+                                         kStartMilliseconds / 1000, outputTail(logFile)));
   }
   name_ = ":" + number;
 }

@@ -58,7 +58,7 @@ FrameCapture captureFrame(const FrameCaptureRequest& r) {
     throw std::runtime_error(fmt::format("the RenderDoc capture script failed ({}): {}",
                                          p.timedOut ? "it hung" : p.signal ? fmt::format("signal {}", p.signal)
                                                                            : fmt::format("exit {}", p.exitCode),
-                                         scriptOutputTail(work.path() / "script.err")));
+                                         outputTail(work.path() / "script.err")));
   const nlohmann::json done = readBoundedJson(result, JsonLimits{}, "the capture script's result");
   if (done.contains("error"))
     throw InputError(r.program.front(), std::nullopt, done["error"].at("field").get<std::string>(),

@@ -31,19 +31,6 @@ std::string readWhole(const fs::path& path) {
   return s.str();
 }
 
-// The last non-empty lines of what the script printed, joined for a one-line message.
-std::string tail(const std::string& text, size_t lines = 4) {
-  std::vector<std::string> kept;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    if (line.find_first_not_of(" \t\r") != std::string::npos) kept.push_back(line);
-  if (kept.empty()) return "(nothing)";
-  std::string joined;
-  for (size_t i = kept.size() > lines ? kept.size() - lines : 0; i < kept.size(); ++i)
-    joined += (joined.empty() ? "" : " | ") + kept[i];
-  return joined;
-}
-
 std::vector<std::string> scriptArguments(const DumpRequest& r) {
   std::vector<std::string> args = {r.capture.string(), "--out", r.workDir.string(), "--depth", r.depth, "--normals", r.normals};
   if (r.viewProjection.empty()) args.insert(args.end(), {"--view", r.view, "--projection", r.projection});
@@ -71,7 +58,7 @@ void checkChosenPython(const fs::path& workDir) {
     throw InputError(chosen, std::nullopt, "AOREPLAY_PYTHON",
                      fmt::format("is not a Python 3 that runs ({}): unset it to use Debian's /usr/bin/python3",
                                  !p.started ? p.startError : p.exitCode != 0 ? fmt::format("exit {}", p.exitCode)
-                                                                              : "it printed " + tail(readWhole(out), 1)));
+                                                                              : "it printed " + outputTail(out, 1)));
   checked = true;
 }
 
@@ -101,8 +88,6 @@ ProcessResult runRenderDocScript(std::string_view text, const std::string& name,
   return p;
 }
 
-std::string scriptOutputTail(const fs::path& file) { return tail(readWhole(file)); }
-
 namespace {
 
 bool unset(const char* name) {
@@ -123,11 +108,11 @@ nlohmann::json runDumpScript(const DumpRequest& r, const std::map<std::string, s
   if (p.signal)
     throw InputError(r.capture.string(), std::nullopt, "",
                      fmt::format("RenderDoc crashed replaying it (signal {}); its last output: {}", p.signal,
-                                 tail(readWhole(err))));
+                                 outputTail(err)));
   if (p.exitCode != 0 || !fs::exists(r.workDir / "dump.json"))
     throw std::runtime_error(fmt::format("the RenderDoc dump script ({}) failed on {} (exit {}): {}",
                                          renderDocPythonInterpreter(), r.capture.string(), p.exitCode,
-                                         tail(readWhole(err))));
+                                         outputTail(err)));
   try {
     return nlohmann::json::parse(readWhole(r.workDir / "dump.json"));
   } catch (const nlohmann::json::exception& e) {

@@ -40,8 +40,6 @@ nlohmann::json runRenderDocDump(const DumpRequest& request);
 ProcessResult runRenderDocScript(std::string_view text, const std::string& name, const std::vector<std::string>& arguments,
                                  const std::map<std::string, std::string>& environment,
                                  const std::filesystem::path& workDir, std::chrono::seconds timeLimit);
-// The last lines of a file the script wrote, joined into one line for a message.
-std::string scriptOutputTail(const std::filesystem::path& file);
 
 // The Python that runs the script: $AOREPLAY_PYTHON, else Debian's /usr/bin/python3 (the one
 // python3-renderdoc is built for), else python3 on PATH.

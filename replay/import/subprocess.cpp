@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <thread>
 
 namespace aor {
@@ -97,6 +98,18 @@ ProcessResult waitForProcess(int pid, std::chrono::milliseconds timeLimit) {
   if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   return result;
+}
+
+std::string outputTail(const std::filesystem::path& file, size_t lines) {
+  std::vector<std::string> kept;
+  std::ifstream in(file, std::ios::binary);
+  for (std::string line; std::getline(in, line);)
+    if (line.find_first_not_of(" \t\r") != std::string::npos) kept.push_back(line);
+  if (kept.empty()) return "(nothing)";
+  std::string joined;
+  for (size_t i = kept.size() > lines ? kept.size() - lines : 0; i < kept.size(); ++i)
+    joined += (joined.empty() ? "" : " | ") + kept[i];
+  return joined;
 }
 
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,

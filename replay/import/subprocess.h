@@ -38,4 +38,8 @@ SpawnedProcess spawnProcess(const std::vector<std::string>& argv, const std::map
 // Waits for a spawned child; past `timeLimit` kills it (SIGKILL) and sets `timedOut`.
 ProcessResult waitForProcess(int pid, std::chrono::milliseconds timeLimit);
 
+// The last `lines` non-empty lines of a child's output file, joined with " | " for a one-line
+// message ("(nothing)" when there are none).
+std::string outputTail(const std::filesystem::path& file, size_t lines = 4);
+
 }  // namespace aor

@@ -197,7 +197,9 @@ struct GlContext {
                            visual->depth, InputOutput, visual->visual, CWColormap | CWEventMask, &attributes);
     XFree(visual);
     XMapWindow(display, window);
-    for (XEvent event; event.type != MapNotify;) XNextEvent(display, &event);
+    XEvent event;
+    do XNextEvent(display, &event);
+    while (event.type != MapNotify);
     const int contextAttributes[] = {GLX_CONTEXT_MAJOR_VERSION_ARB, 3, GLX_CONTEXT_MINOR_VERSION_ARB, 3,
                                      GLX_CONTEXT_PROFILE_MASK_ARB, GLX_CONTEXT_CORE_PROFILE_BIT_ARB, 0};
     context = glXCreateContextAttribsARB(display, config, nullptr, True, contextAttributes);

@@ -81,7 +81,7 @@ class Comparison:
     def folders(self, kind, old_dir, new_dir):
         """Every file of two output folders: report.json by its untimed keys, the rest byte for byte."""
         names = set()
-        for root, where in ((old_dir, "old"), (new_dir, "new")):
+        for root in (old_dir, new_dir):
             for folder, _, files in os.walk(root):
                 names |= {os.path.relpath(os.path.join(folder, f), root) for f in files}
         for name in sorted(names):
