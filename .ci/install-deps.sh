@@ -40,6 +40,7 @@ packages=(
   godot3 qtbase5-examples  # OpenGL-core programs the import is tested on (tests/renderdoc/gl_programs_import_test.sh)
   libepoxy-dev libx11-dev libgl1-mesa-dri  # rd_gl_scene (tests/renderdoc/): GL 3.3 core through GLX and libepoxy, on llvmpipe
   clang libclang-rt-14-dev  # capture-reader fuzzer (libFuzzer), tests/fuzz/
+  universal-ctags  # functions and their lengths for tests/scripts/check_function_length.py
 )
 missing=()
 for p in "${packages[@]}"; do

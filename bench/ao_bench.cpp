@@ -57,7 +57,7 @@
 #include "techniques/built_frame.h"
 #include "techniques/registry.h"
 #include "core/compare_stats.h"
-#include "report/gpu_total.h"
+#include "run/gpu_total.h"
 #include "report/run_outputs.h"
 #include "core/stats.h"
 #include "vk/context.h"

@@ -415,29 +415,28 @@ void runFileChecks(std::vector<FileCheck>& checks, const Capture& capture, const
 
 // ---- loading ---------------------------------------------------------------------------------------
 
-Capture loadCapture(const fs::path& folder) {
+namespace {
+
+// The folder exists and holds a regular capture.json; returns where errors in that file point.
+Where checkCaptureFolder(const fs::path& folder) {
   if (folder.empty()) throw InputError("", std::nullopt, "", "no capture folder given (the path is empty)");
   const std::string folderDisplay = folder.string();
-  {
-    std::error_code ec;
-    const auto st = fs::status(folder, ec);
-    if (ec || !fs::exists(st)) throw InputError(folderDisplay, std::nullopt, "", "capture folder does not exist");
-    if (!fs::is_directory(st))
-      throw InputError(folderDisplay, std::nullopt, "", "is not a folder; a capture is a folder holding capture.json");
-  }
+  std::error_code ec;
+  const auto st = fs::status(folder, ec);
+  if (ec || !fs::exists(st)) throw InputError(folderDisplay, std::nullopt, "", "capture folder does not exist");
+  if (!fs::is_directory(st))
+    throw InputError(folderDisplay, std::nullopt, "", "is not a folder; a capture is a folder holding capture.json");
   const fs::path jsonPath = folder / "capture.json";
-  const Where top{(folder / "capture.json").lexically_normal().string(), std::nullopt};
-  {
-    std::error_code ec;
-    const auto st = fs::status(jsonPath, ec);
-    if (ec || !fs::exists(st)) fail(top, "", "file does not exist; a capture folder must contain capture.json");
-    if (!fs::is_regular_file(st)) fail(top, "", "is not a regular file");
-  }
-  const json root = readBoundedJson(jsonPath, kCaptureJsonLimits, top.file);
-  if (!root.is_object()) fail(top, "", "the top level must be a JSON object, got " + describe(root));
+  const Where top{jsonPath.lexically_normal().string(), std::nullopt};
+  const auto jsonStatus = fs::status(jsonPath, ec);
+  if (ec || !fs::exists(jsonStatus)) fail(top, "", "file does not exist; a capture folder must contain capture.json");
+  if (!fs::is_regular_file(jsonStatus)) fail(top, "", "is not a regular file");
+  return top;
+}
 
-  // format and version first: a file of another format or version gets that message, not a
-  // complaint about fields it does not know.
+// format and version first: a file of another format or version gets that message, not a
+// complaint about fields it does not know. Returns whether it is version 1.1 (geometry allowed).
+bool checkFormatAndVersion(const json& root, const Where& top) {
   auto format = root.find("format");
   if (format == root.end()) fail(top, "format", fmt::format("missing; expected \"{}\"", kFormatName));
   if (!format->is_string() || format->get<std::string>() != kFormatName)
@@ -455,13 +454,10 @@ Capture loadCapture(const fs::path& folder) {
                                      describe(*version), kSupportedVersions));
   if (!version1 && !version11)
     fail(top, "version", fmt::format("version {} is not supported; supported versions: {}", version->dump(), kSupportedVersions));
-  checkKnownFields(root, kTopLevelFields, top, "of capture.json");
-  std::optional<fs::path> geometry;
-  if (auto g = root.find("geometry"); g != root.end()) {
-    if (!version11) fail(top, "geometry", "needs \"version\": 1.1 (version 1 captures have no geometry)");
-    geometry = relativePath(*g, "geometry", top);
-  }
+  return version11;
+}
 
+void readSize(const json& root, const Where& top, Capture& capture) {
   const std::int64_t width = positiveInt(root, "width", top);
   const std::int64_t height = positiveInt(root, "height", top);
   if (width > kMaxImageSide)
@@ -472,71 +468,59 @@ Capture loadCapture(const fs::path& folder) {
     fail(top, "height",
          fmt::format("{}x{} = {} pixels exceeds the limit of {} pixels (16384*16384/4)", width, height, width * height,
                      kMaxImagePixels));
-
-  Capture capture;
   capture.width = static_cast<int>(width);
   capture.height = static_cast<int>(height);
-  capture.folder = absoluteFolder(folder);
-  capture.name = capture.folder.filename().string();
+}
 
-  if (auto scene = root.find("scene"); scene != root.end()) {
-    if (!scene->is_object()) fail(top, "scene", "expected an object, got " + describe(*scene));
-    checkAoRadius(*scene, top);
-    capture.scene = *scene;
-  }
-
+const json& framesArray(const json& root, const Where& top) {
   auto framesIt = root.find("frames");
   if (framesIt == root.end()) fail(top, "frames", "missing; expected an array of frame objects");
   if (!framesIt->is_array()) fail(top, "frames", "expected an array of frame objects, got " + describe(*framesIt));
   if (framesIt->empty()) fail(top, "frames", "the array is empty; a capture needs at least one frame");
   if (framesIt->size() > size_t(kMaxCaptureFrames))  // the parser refuses longer arrays already
     fail(top, "frames", fmt::format("more than {} frames, the limit", kMaxCaptureFrames));
+  return *framesIt;
+}
 
-  // Pass 1: everything in capture.json, so typos are reported before any EXR is opened.
-  std::vector<FrameEntry> entries;
-  entries.reserve(framesIt->size());
-  capture.frames.reserve(framesIt->size());
-  for (size_t i = 0; i < framesIt->size(); ++i) {
-    const json& f = (*framesIt)[i];
-    const Where w{top.file, static_cast<int>(i)};
-    if (!f.is_object()) fail(w, "frames", "expected a frame object, got " + describe(f));
-    checkKnownFields(f, kFrameFields, w, "of a frame");
-    FrameEntry entry;
-    auto gbuffer = f.find("gbuffer");
-    if (gbuffer == f.end()) fail(w, "gbuffer", "missing; expected the path of the frame's G-buffer EXR");
-    entry.gbuffer = relativePath(*gbuffer, "gbuffer", w);
-    entry.gbufferText = gbuffer->get<std::string>();
-    if (auto ref = f.find("reference"); ref != f.end()) {
-      entry.reference = relativePath(*ref, "reference", w);
-      entry.referenceText = ref->get<std::string>();
-    }
-    CaptureFrame frame;
-    if (auto cut = f.find("cut"); cut != f.end()) {
-      if (!cut->is_boolean()) fail(w, "cut", "expected true or false, got " + describe(*cut));
-      frame.cut = cut->get<bool>();
-    }
-    frame.view = parseMatrix(f, "view", w);
-    frame.projection = parseMatrix(f, "projection", w);
-    checkView(frame.view, w);
-    checkProjection(frame.projection, w);
-    capture.frames.push_back(frame);
-    entries.push_back(std::move(entry));
+// One frame object of capture.json: its matrices and cut into `frame`, its file names returned.
+FrameEntry readFrameEntry(const json& f, const Where& w, CaptureFrame& frame) {
+  if (!f.is_object()) fail(w, "frames", "expected a frame object, got " + describe(f));
+  checkKnownFields(f, kFrameFields, w, "of a frame");
+  FrameEntry entry;
+  auto gbuffer = f.find("gbuffer");
+  if (gbuffer == f.end()) fail(w, "gbuffer", "missing; expected the path of the frame's G-buffer EXR");
+  entry.gbuffer = relativePath(*gbuffer, "gbuffer", w);
+  entry.gbufferText = gbuffer->get<std::string>();
+  if (auto ref = f.find("reference"); ref != f.end()) {
+    entry.reference = relativePath(*ref, "reference", w);
+    entry.referenceText = ref->get<std::string>();
   }
+  if (auto cut = f.find("cut"); cut != f.end()) {
+    if (!cut->is_boolean()) fail(w, "cut", "expected true or false, got " + describe(*cut));
+    frame.cut = cut->get<bool>();
+  }
+  frame.view = parseMatrix(f, "view", w);
+  frame.projection = parseMatrix(f, "projection", w);
+  checkView(frame.view, w);
+  checkProjection(frame.projection, w);
+  return entry;
+}
 
-  // Pass 2: files. Paths stay inside the folder, every EXR header is checked, and the channel
-  // layout of frame 0 must hold for every frame. Each distinct path is resolved and checked once,
-  // however many frames name it, on a few threads; errors are then reported in frame order, as
-  // a check frame by frame would find them.
-  std::error_code ec;
-  const fs::path folderCanonical = fs::canonical(capture.folder, ec);
-  if (ec) throw InputError(folderDisplay, std::nullopt, "", "cannot resolve the capture folder: " + ec.message());
+// Every frame's files, each distinct path resolved and checked once (however many frames name it)
+// on a few threads: checks[] and, per frame, its G-buffer's and reference's index in it.
+struct FrameFileChecks {
   std::vector<FileCheck> checks;
+  std::vector<std::pair<size_t, std::optional<size_t>>> ofFrame;
+};
+
+FrameFileChecks checkFrameFiles(const fs::path& folder, const fs::path& folderCanonical, const std::vector<FrameEntry>& entries,
+                                const Capture& capture, const std::string& jsonFile) {
+  FrameFileChecks out;
   std::unordered_map<std::string, size_t> checkOf[2];  // [reference?] relative path -> index in checks
-  std::vector<std::pair<size_t, std::optional<size_t>>> frameChecks;  // per frame: G-buffer, reference
-  frameChecks.reserve(entries.size());
+  out.ofFrame.reserve(entries.size());
   const auto checkFor = [&](const fs::path& rel, const std::string& text, bool reference, int frame) {
-    auto [it, added] = checkOf[reference].try_emplace(rel.generic_string(), checks.size());
-    if (added) checks.push_back({rel, text, (folder / rel).lexically_normal().string(), reference, frame});
+    auto [it, added] = checkOf[reference].try_emplace(rel.generic_string(), out.checks.size());
+    if (added) out.checks.push_back({rel, text, (folder / rel).lexically_normal().string(), reference, frame});
     return it->second;
   };
   for (size_t i = 0; i < entries.size(); ++i) {
@@ -544,46 +528,81 @@ Capture loadCapture(const fs::path& folder) {
     const size_t g = checkFor(entry.gbuffer, entry.gbufferText, false, int(i));
     std::optional<size_t> r;
     if (entry.reference) r = checkFor(*entry.reference, entry.referenceText, true, int(i));
-    frameChecks.emplace_back(g, r);
+    out.ofFrame.emplace_back(g, r);
   }
-  runFileChecks(checks, capture, folderCanonical, top.file);
+  runFileChecks(out.checks, capture, folderCanonical, jsonFile);
+  return out;
+}
 
+// The channel layout of frame 0 must hold for every frame.
+void checkSameLayout(const Layout& layout, const Layout& first, const Where& gw, int index) {
+  if (layout.normals != first.normals)
+    fail(gw, "normal.X",
+         fmt::format("frame {} {}; every frame must have the same channels", index,
+                     layout.normals ? "has normals but frame 0 has none"
+                                    : "has no normals (normal.X, normal.Y, normal.Z) but frame 0 has them"));
+  if (layout.depth2 != first.depth2)
+    fail(gw, "depth2",
+         fmt::format("frame {} {}; every frame must have the same channels", index,
+                     layout.depth2 ? "has a depth2 channel but frame 0 has none" : "has no depth2 channel but frame 0 has one"));
+}
+
+// The checks' results in frame order, as a check frame by frame would find them: the first error
+// is thrown, else each frame's files and the capture's layout are set.
+void applyFrameFiles(const FrameFileChecks& files, Capture& capture) {
   Layout first;
-  for (size_t i = 0; i < entries.size(); ++i) {
-    const int index = static_cast<int>(i);
+  for (size_t i = 0; i < capture.frames.size(); ++i) {
     CaptureFrame& frame = capture.frames[i];
-    const FileCheck& g = checks[frameChecks[i].first];
+    const FileCheck& g = files.checks[files.ofFrame[i].first];
     if (g.error) std::rethrow_exception(g.error);
     frame.gbuffer = g.absolute;
-    const Layout layout = g.layout;
-    const Where gw{g.display, index};
-    if (i == 0) {
-      first = layout;
-    } else {
-      if (layout.normals != first.normals)
-        fail(gw, "normal.X",
-             fmt::format("frame {} {}; every frame must have the same channels", index,
-                         layout.normals ? "has normals but frame 0 has none"
-                                        : "has no normals (normal.X, normal.Y, normal.Z) but frame 0 has them"));
-      if (layout.depth2 != first.depth2)
-        fail(gw, "depth2",
-             fmt::format("frame {} {}; every frame must have the same channels", index,
-                         layout.depth2 ? "has a depth2 channel but frame 0 has none"
-                                       : "has no depth2 channel but frame 0 has one"));
-    }
-    if (frameChecks[i].second) {
-      const FileCheck& r = checks[*frameChecks[i].second];
+    if (i == 0) first = g.layout;
+    else checkSameLayout(g.layout, first, Where{g.display, int(i)}, int(i));
+    if (files.ofFrame[i].second) {
+      const FileCheck& r = files.checks[*files.ofFrame[i].second];
       if (r.error) std::rethrow_exception(r.error);
       frame.reference = r.absolute;
     }
   }
   capture.hasNormals = first.normals;
   capture.hasDepth2 = first.depth2;
-  if (geometry) {
-    const std::string text = root.at("geometry").get<std::string>();
-    capture.geometry = resolveInFolder(capture.folder, folderCanonical, *geometry, text,
-                                       (folder / *geometry).lexically_normal().string(), "geometry", top);
+}
+
+}  // namespace
+
+Capture loadCapture(const fs::path& folder) {
+  const Where top = checkCaptureFolder(folder);
+  const json root = readBoundedJson(folder / "capture.json", kCaptureJsonLimits, top.file);
+  if (!root.is_object()) fail(top, "", "the top level must be a JSON object, got " + describe(root));
+  const bool version11 = checkFormatAndVersion(root, top);
+  checkKnownFields(root, kTopLevelFields, top, "of capture.json");
+  std::optional<fs::path> geometry;
+  if (auto g = root.find("geometry"); g != root.end()) {
+    if (!version11) fail(top, "geometry", "needs \"version\": 1.1 (version 1 captures have no geometry)");
+    geometry = relativePath(*g, "geometry", top);
   }
+  Capture capture;
+  readSize(root, top, capture);
+  capture.folder = absoluteFolder(folder);
+  capture.name = capture.folder.filename().string();
+  if (auto scene = root.find("scene"); scene != root.end()) {
+    if (!scene->is_object()) fail(top, "scene", "expected an object, got " + describe(*scene));
+    checkAoRadius(*scene, top);
+    capture.scene = *scene;
+  }
+  // Pass 1: everything in capture.json, so typos are reported before any EXR is opened.
+  const json& frames = framesArray(root, top);
+  std::vector<FrameEntry> entries;
+  capture.frames.resize(frames.size());
+  for (size_t i = 0; i < frames.size(); ++i) entries.push_back(readFrameEntry(frames[i], Where{top.file, int(i)}, capture.frames[i]));
+  // Pass 2: files. Paths stay inside the folder, every EXR header is checked.
+  std::error_code ec;
+  const fs::path folderCanonical = fs::canonical(capture.folder, ec);
+  if (ec) throw InputError(folder.string(), std::nullopt, "", "cannot resolve the capture folder: " + ec.message());
+  applyFrameFiles(checkFrameFiles(folder, folderCanonical, entries, capture, top.file), capture);
+  if (geometry)
+    capture.geometry = resolveInFolder(capture.folder, folderCanonical, *geometry, root.at("geometry").get<std::string>(),
+                                       (folder / *geometry).lexically_normal().string(), "geometry", top);
   return capture;
 }
 

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     auto text = aor::cli::versionText();
     return text.substr(0, text.size() - 1);  // CLI11 ends it with a newline
   }, "version, git commit, Vulkan loader and every device's driver version; exit");
-  const aor::Technique& help = aor::cli::techniqueForHelp(argc, argv, aor::findTechnique("gtao"));
+  const aor::Technique& help = aor::cli::techniqueForHelp(argc, argv, aor::defaultTechnique());
   aor::cli::registerRunCommand(app, help);
   aor::cli::registerCaptureCommand(app);
   aor::cli::registerGraphCommand(app, help);

@@ -13,10 +13,7 @@
 #include "options/progress.h"
 #include "cli/settings_options.h"
 #include "metrics/depth.h"
-#include "metrics/run_analysis.h"
-#include "replay_loop/analyzed_output.h"
-#include "replay_loop/replayer.h"
-#include "techniques/built_frame.h"
+#include "run/run.h"
 #include "report/expectations.h"
 #include "report/html/run_page.h"
 #include "report/junit.h"
@@ -78,44 +75,6 @@ class ShownFrames {
   std::vector<html::FrameImages> frames_;
 };
 
-void analyzeFrame(RunAnalysis& analysis, const Capture& capture, const FrameOutput& frame, float historyWeight,
-                  const std::map<int, std::vector<float>>& noHistory) {
-  auto reference = loadReference(capture, frame.index);
-  AnalyzedFrame analyzed = analyzedFrame(capture, frame, reference ? &*reference : nullptr);
-  analyzed.historyWeight = historyWeight;
-  if (auto it = noHistory.find(frame.index); it != noHistory.end()) analyzed.noHistory = it->second.data();
-  analysis.addFrame(analyzed);
-}
-
-void addAnalysis(nlohmann::json& report, const RunAnalysis& analysis) {
-  for (auto& frame : report["frames"])
-    if (auto metrics = analysis.frameJson(frame["index"].get<int>()); !metrics.empty()) frame["metrics"] = metrics;
-  report["metrics"] = analysis.summaryJson();
-}
-
-// Without references, ghosting is measured against the same frames replayed without history (the
-// technique's own no-history variant: one extra untimed replay, only for runs that keep history and
-// techniques that have one).
-std::map<int, std::vector<float>> replayWithoutHistory(VulkanContext& vk, const Capture& capture, const ReplayOptions& run) {
-  std::map<int, std::vector<float>> frames;
-  int end = run.frameEnd < 0 ? int(capture.frames.size()) : run.frameEnd;
-  bool allReferenced = true;
-  for (int i = run.frameBegin; i < end; ++i) allReferenced &= capture.frames[size_t(i)].reference.has_value();
-  const Technique& technique = run.settings.technique();
-  if (allReferenced || !historyNeedsOf(run.settings, end - run.frameBegin).keeps || !technique.withoutHistory) return frames;
-  auto without = technique.withoutHistory(run.settings);
-  if (!without) return frames;
-  ReplayOptions options(*without);
-  options.frameBegin = run.frameBegin;
-  options.frameEnd = run.frameEnd;
-  replayCapture(vk, capture, options, [&](const FrameOutput& f) { frames[f.index] = f.visibility; });
-  return frames;
-}
-
-// The history weight the EMA prediction of ghosting uses: seed 000's temporal key, where the
-// technique has it.
-float historyWeightOf(const Settings& settings) { return settings.has("temporal") ? settings.f("temporal") : 0.0f; }
-
 int runCommand(const RunArgs& args) {
   Capture capture = loadCapture(args.capture);
   std::vector<Threshold> expectations;
@@ -135,30 +94,27 @@ int runCommand(const RunArgs& args) {
   if (!args.expect.empty()) inputs.emplace_back(args.expect);
   OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), ResultKind::Run, inputs);
 
-  ReplayResult result;
-  RunAnalysis analysis;
+  std::optional<RunResults> run;
   ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
   size_t validationMessages = 0;
   {
     ContextScope context({args.device, args.validate, optionalExtensionsOf({options.settings})});
-    auto noHistory = replayWithoutHistory(context.vk, capture, options);
-    result = replayCapture(context.vk, capture, options, [&](const FrameOutput& frame) {
+    run = runCapture(context.vk, capture, RunRequest(options), [&](const FrameOutput& frame) {
       if (!args.noImages) writeFrameImages(out.staging(), frame);
       for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);
-      analyzeFrame(analysis, capture, frame, historyWeightOf(options.settings), noHistory);
       shown.keep(capture, frame);
     });
     destroyContext(context.vk);  // waits for the device; the last validation messages arrive here
     validationMessages = context.vk.validationMessageCount();
   }
-  auto report = buildReport(capture, options, result);
-  addAnalysis(report, analysis);
+  const ReplayResult& result = run->replay;
+  auto report = buildReport(capture, options, *run);
   report["validation"] = {{"enabled", args.validate}, {"messages", validationMessages}};
   writeJson(out.staging() / "report.json", report);
   writeJson(out.staging() / "trace.json", buildTrace(result));
-  writeTemporalPlots(out.staging(), report);
+  writeTemporalPlots(out.staging(), report, result.noHistoryReason);
   std::vector<std::string> summary = {errorLine(report), temporalLine(report)};
-  writeText(out.staging() / "report.html", html::runPageHtml({report, shown.take(), result.graphDot, summary}));
+  writeText(out.staging() / "report.html", html::runPageHtml({report, shown.take(), result.graph, summary, result.noHistoryReason}));
 
   fmt::print("device: {} ({})\n", result.device.name, result.device.driver);
   fmt::print("capture: {} ({}x{}, frames {}:{}), settings: {}\n", capture.name, capture.width, capture.height,

@@ -8,12 +8,13 @@
 
 #include "capture/capture.h"
 #include "technique_api/settings.h"
+#include "techniques/registry.h"
 #include "techniques/settings_file.h"
 
 namespace aor::cli {
 
 struct SettingsOptions {
-  std::string technique = "gtao";        // --technique NAME
+  std::string technique = defaultTechnique().name;  // --technique NAME
   std::string preset;                    // --preset (empty: the technique's default)
   std::vector<std::string> assignments;  // --set KEY=VALUE
   std::string settingsFile;              // --settings FILE (techniques/settings_file.h)

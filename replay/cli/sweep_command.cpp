@@ -12,15 +12,12 @@
 #include "cli/number_options.h"
 #include "options/progress.h"
 #include "cli/settings_options.h"
-#include "metrics/error_metrics.h"
-#include "replay_loop/analyzed_output.h"
-#include "replay_loop/replayer.h"
+#include "run/run.h"
 #include "techniques/registry.h"
 #include "techniques/settings_file.h"
 #include "report/html/sweep_page.h"
 #include "core/output_directory.h"
 #include "report/run_outputs.h"
-#include "core/stats.h"
 #include "report/sweep.h"
 #include "vk/context.h"
 
@@ -44,64 +41,13 @@ struct SweepArgs {
   SweepRank rank = SweepRank::Rmse;
 };
 
-// Reference visibility per frame index: the capture's ray-traced one when every replayed frame
-// has it, else the screen-space reference technique run once with the sweep's --set values (those
-// it declares).
-struct SweepReference {
-  std::string kind;
-  std::map<int, std::vector<float>> frames;
-};
-
-SweepReference sweepReference(VulkanContext& vk, const Capture& capture, int begin, int end,
-                              const std::vector<std::string>& assignments) {
-  SweepReference ref{"ray-traced", {}};
-  bool complete = true;
-  for (int i = begin; i < end && complete; ++i) {
-    auto r = loadReference(capture, i);
-    if (r) ref.frames[i] = std::move(*r);
-    complete = r.has_value();
-  }
-  if (complete) return ref;
-  ref = {"screen-space", {}};
-  const Technique& reference = findTechnique("reference");
-  std::vector<std::string> own;
-  for (const auto& a : assignments)
-    if (reference.parameter(a.substr(0, a.find('=')))) own.push_back(a);
-  ReplayOptions options(resolveSettings(reference, capture, "", own));
-  options.frameBegin = begin;
-  options.frameEnd = end;
-  fmt::print(stderr, "the capture has no ray-traced reference: computing the screen-space reference\n");
-  replayCapture(vk, capture, options, [&](const FrameOutput& f) { ref.frames[f.index] = f.visibility; });
-  return ref;
-}
-
-SweepRow measure(VulkanContext& vk, const Capture& capture, ReplayOptions options, const SweepConfig& config,
-                 const SweepReference& reference) {
-  options.settings = config.settings;
-  ErrorAnalysis errors(reference.kind);
-  auto result = replayCapture(vk, capture, options, [&](const FrameOutput& f) {
-    AnalyzedFrame analyzed = analyzedFrame(capture, f, &reference.frames.at(f.index));
-    errors.addFrame(analyzed);
-  });
-  SweepRow row{config};
-  for (const auto& [name, durations] : samplesByPass(result)) {
-    double median = summarize(durations).median;
-    row.passMs.emplace_back(name, median);
-  }
-  row.totalMs = totalMedianMs(timedFrames(result));
-  row.error = errors.summaryJson();
-  row.rmse = row.error["rmse"].get<double>();
-  row.ssim = row.error["ssim"].get<double>();
-  const auto& band = row.error["halo_band"];
-  row.haloPixels = band["pixels"].get<int64_t>();
-  row.haloRmse = band["rmse"].get<double>();
-  row.haloBias = band["bias"].get<double>();
-  for (const auto& frame : result.frames)
-    if (auto spp = frame.techniqueValues.find("accumulated_spp"); spp != frame.techniqueValues.end()) {
-      row.sppMin = row.sppMin == 0 ? spp->second : std::min(row.sppMin, spp->second);
-      row.sppMax = std::max(row.sppMax, spp->second);
-    }
-  return row;
+SweepRow measure(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const SweepConfig& config,
+                 const References& references) {
+  RunRequest request(options);
+  request.replay.settings = config.settings;
+  request.references = &references;
+  request.temporal = false;
+  return sweepRow(config, runCapture(vk, capture, request));
 }
 
 std::vector<std::string> splitPresets(const std::string& text) {
@@ -152,7 +98,7 @@ int sweepCommand(const SweepArgs& args) {
     for (const auto& config : configs) runs.push_back(config.settings);
     ContextScope context({args.device, false, optionalExtensionsOf(std::move(runs))});
     info.device = context.vk.info.name;
-    auto reference = sweepReference(context.vk, capture, begin, end, args.assignments);
+    auto reference = completeReferences(context.vk, capture, begin, end, args.assignments);
     info.referenceKind = reference.kind;
     // A line per configuration, with the time left estimated from the ones done (cli/progress.h).
     auto start = std::chrono::steady_clock::now();

@@ -165,4 +165,13 @@ uint32_t RenderGraph::addPass(std::string name, const std::function<void(PassBui
   return index;
 }
 
+RenderGraph RenderGraph::withoutRuntime() const {
+  RenderGraph copy = *this;
+  for (auto& pass : copy.passes_) pass.execute = {};
+  for (auto& resource : copy.resources_) resource.externalImage = nullptr, resource.externalBuffer = nullptr;
+  return copy;
+}
+
+GraphSnapshot snapshotOf(const RenderGraph& graph, const CompiledGraph& compiled) { return {graph.withoutRuntime(), compiled}; }
+
 }  // namespace aor::graph

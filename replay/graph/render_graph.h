@@ -203,6 +203,9 @@ class RenderGraph {
                    std::function<void(PassContext&)> execute = {});
 
   CompiledGraph compile() const;
+  // The declarations alone: no pass's recording function, no imported resource's runtime object
+  // (what a report may keep after the frame's resources are gone).
+  RenderGraph withoutRuntime() const;
 
   const std::vector<ResourceDecl>& resources() const { return resources_; }
   const std::vector<PassDecl>& passes() const { return passes_; }
@@ -213,6 +216,14 @@ class RenderGraph {
   std::vector<ResourceDecl> resources_;
   std::vector<PassDecl> passes_;
 };
+
+// A frame's graph kept as data after it ran: its declarations and what compile() made of them.
+// Reports describe it (describe, toDot, graphResourcesJson).
+struct GraphSnapshot {
+  RenderGraph declared;
+  CompiledGraph compiled;
+};
+GraphSnapshot snapshotOf(const RenderGraph& graph, const CompiledGraph& compiled);
 
 // Human-readable explanation (passes run and culled with reasons, resources with lifetimes,
 // sizes, formats and aliasing, barriers) and Graphviz DOT of a compiled graph.

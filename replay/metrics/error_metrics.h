@@ -56,10 +56,14 @@ BandError bandError(const float* output, const float* reference, const float* de
 ErrorMetrics computeErrorMetrics(const float* output, const float* reference, const float* depth, int width, int height,
                                  bool reversedDepth, bool withFlip = false);
 
+// What a reference is, as reports name it.
+inline constexpr const char* kRayTracedReference = "ray-traced";      // the capture's own
+inline constexpr const char* kScreenSpaceReference = "screen-space";  // the reference technique's
+
 class ErrorAnalysis {
  public:
-  // `referenceKind` names what the reference is ("ray-traced", "screen-space"); it is reported.
-  explicit ErrorAnalysis(std::string referenceKind = "ray-traced", bool withFlip = false)
+  // `referenceKind` names what the reference is (kRayTracedReference, ...); it is reported.
+  explicit ErrorAnalysis(std::string referenceKind = kRayTracedReference, bool withFlip = false)
       : referenceKind_(std::move(referenceKind)), withFlip_(withFlip) {}
   void addFrame(const AnalyzedFrame& frame);
   nlohmann::json frameJson(int index) const;  // null when the frame had no reference

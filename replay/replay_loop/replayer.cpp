@@ -23,6 +23,7 @@ namespace aor {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr const char* kKeepsNoHistory = "the technique keeps no history";
 double msBetween(Clock::time_point from, Clock::time_point to) {
   return std::chrono::duration<double, std::milli>(to - from).count();
 }
@@ -123,7 +124,7 @@ struct HistoryTracker {
                           const ReplayOptions& options) const {
     if (!historyWanted) {
       const Technique& t = current.technique();
-      HistoryNeeds needs = t.history ? t.history(current) : HistoryNeeds{false, false, "the technique keeps no history"};
+      HistoryNeeds needs = t.history ? t.history(current) : HistoryNeeds{false, false, kKeepsNoHistory};
       return needs.keeps ? "single-frame replay" : needs.whyNot;
     }
     if (!exists) return "first frame";
@@ -134,6 +135,13 @@ struct HistoryTracker {
     return cameraJumpReason(camera.view, frame.view, medianDistance, options.cameraJump);
   }
 };
+
+// What HistoryTracker::resetReason says of every frame when the technique keeps no history.
+std::string noHistoryReason(const Settings& settings) {
+  const Technique& t = settings.technique();
+  HistoryNeeds needs = t.history ? t.history(settings) : HistoryNeeds{false, false, kKeepsNoHistory};
+  return needs.keeps ? "" : needs.whyNot;
+}
 
 HistoryStates historyStatesOf(const PhysicalResources& resources) {
   return [&resources](const std::string& base, bool current) { return resources.historyState(base, current); };
@@ -158,10 +166,7 @@ struct BuiltFrameRuns {
   OutputLayout outputLayout;
 
   std::vector<CulledPassInfo> culled;
-  std::string description;
-  std::string dot;
-  uint64_t peakBytes = 0, unaliasedBytes = 0;
-  nlohmann::json resources;
+  graph::GraphSnapshot graph;
 };
 
 // Executes the frame's graph `warmup + repeat` times (only the last `repeat` are timed). The graph
@@ -195,11 +200,7 @@ BuiltFrameRuns runBuiltFrame(const FrameBuilder::Setup& setup, PipelineCache& pi
       auto note = builtFrame.notes.find(name);
       runs.culled.push_back({name, note == builtFrame.notes.end() ? c.reason : note->second + "; " + c.reason});
     }
-    runs.description = graph::describe(builtFrame.graph, compiled);
-    runs.dot = graph::toDot(builtFrame.graph, compiled);
-    runs.peakBytes = compiled.peakBytes();
-    runs.unaliasedBytes = compiled.unaliasedTransientBytes + compiled.persistentBytes;
-    runs.resources = graphResourcesJson(builtFrame.graph, compiled);
+    runs.graph = graph::snapshotOf(builtFrame.graph, compiled);
   }
   return runs;
 }
@@ -311,6 +312,7 @@ class Replay {
     result_.device = vk_.info;
     result_.settings = settings_;
     result_.timingMode = resolveTimingMode(options_.timingMode, vk_.info);
+    result_.noHistoryReason = noHistoryReason(settings_);
     setupStart_ = Clock::now();  // the origin of every start time in the result
     const Technique& technique = settings_.technique();
     if (technique.prepare) state_ = technique.prepare(ReplaySetup{capture_, settings_, &vk_});
@@ -446,11 +448,7 @@ class Replay {
     record.gpuWallMs = runs.gpuMs;
     if (lastFrame) {
       result_.culled = std::move(runs.culled);
-      result_.graphDescription = std::move(runs.description);
-      result_.graphDot = std::move(runs.dot);
-      result_.peakGpuBytes = runs.peakBytes;
-      result_.unaliasedGpuBytes = runs.unaliasedBytes;
-      result_.resources = std::move(runs.resources);
+      result_.graph = std::move(runs.graph);
     }
     if (historyWanted_) resources_.swapHistory();
     history_ = {true, capture_.width, capture_.height, settings_, camera, decoded.medianDistance};

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
+#include "graph/render_graph.h"
 #include "replay_loop/camera_jump.h"
 #include "replay_loop/readback.h"
 #include "technique_api/settings.h"
@@ -94,12 +95,11 @@ struct ReplayResult {
   TimingMode timingMode = TimingMode::Overlapped;  // the mode the replay ran in (never Auto)
   int chunkFrames = 0;                             // Isolated: frames preloaded per chunk
   std::vector<FrameRecord> frames;
+  // The reset reason every frame gets when the technique keeps no history under these settings
+  // (HistoryNeeds::whyNot, "temporal=0"); empty when it keeps history.
+  std::string noHistoryReason;
   std::vector<CulledPassInfo> culled;       // of the last frame's graph
-  std::string graphDescription;             // describe() of the last frame's compiled graph
-  std::string graphDot;                     // graph::toDot() of the same, drawn in report.html
-  uint64_t peakGpuBytes = 0;                // resources of the compiled graph, aliasing included
-  uint64_t unaliasedGpuBytes = 0;
-  nlohmann::json resources;                 // graphResourcesJson() of the last frame's graph
+  graph::GraphSnapshot graph;               // the last frame's graph, as compiled
   std::vector<std::pair<std::string, double>> techniqueState;  // TechniqueState::reportValues
   double setupMs = 0;  // staging memory, pipelines and the first frame's images; the first decode overlaps it
   double wallMs = 0;   // from the end of the set-up to the end of the last frame's sink

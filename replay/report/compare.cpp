@@ -11,7 +11,7 @@
 #include "core/json_input.h"
 #include "core/plain_text.h"
 #include "core/compare_stats.h"
-#include "report/gpu_total.h"
+#include "run/gpu_total.h"
 
 namespace aor {
 namespace fs = std::filesystem;

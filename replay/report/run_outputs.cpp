@@ -11,6 +11,7 @@
 #include "core/version.h"
 #include "capture/image_io.h"
 #include "core/pass_names.h"
+#include "graph/graph_json.h"
 #include "core/stats.h"
 
 namespace aor {
@@ -23,29 +24,6 @@ nlohmann::json summaryJson(const Summary& s) {
 }
 
 }  // namespace
-
-std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result) {
-  std::vector<std::pair<std::string, std::vector<double>>> passes;
-  for (const auto& frame : result.frames)
-    for (const auto& p : frame.passes) {
-      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& e) { return e.first == p.name; });
-      if (it == passes.end()) it = passes.insert(passes.end(), {p.name, {}});
-      it->second.insert(it->second.end(), p.durationsMs.begin(), p.durationsMs.end());
-    }
-  return passes;
-}
-
-TimedFrame timedFrame(const FrameRecord& frame) {
-  TimedFrame timed;
-  for (const auto& p : frame.passes) timed.push_back({p.name, p.durationsMs});
-  return timed;
-}
-
-std::vector<TimedFrame> timedFrames(const ReplayResult& result) {
-  std::vector<TimedFrame> frames;
-  for (const auto& f : result.frames) frames.push_back(timedFrame(f));
-  return frames;
-}
 
 void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
   fs::create_directories(outDir / "ao");
@@ -118,9 +96,10 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   nlohmann::json culled = nlohmann::json::array();
   for (const auto& c : result.culled) culled.push_back({{"name", c.name}, {"reason", c.reason}});
   report["culled_passes"] = culled;
-  report["memory"] = {{"peak_gpu_bytes", result.peakGpuBytes},
-                      {"unaliased_gpu_bytes", result.unaliasedGpuBytes},
-                      {"resources", result.resources}};
+  const graph::CompiledGraph& compiled = result.graph.compiled;
+  report["memory"] = {{"peak_gpu_bytes", compiled.peakBytes()},
+                      {"unaliased_gpu_bytes", compiled.unaliasedTransientBytes + compiled.persistentBytes},
+                      {"resources", graphResourcesJson(result.graph.declared, compiled)}};
 
   nlohmann::json frameList = nlohmann::json::array();
   for (const auto& f : result.frames) {
@@ -153,6 +132,14 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   report["replay_fps"] = result.wallMs > 0 ? 1000.0 * double(result.frames.size()) / result.wallMs : 0.0;
   HostOverhead overhead = hostOverhead(result);
   report["host_overhead"] = {{"ms", overhead.ms}, {"fraction_of_wall", overhead.fractionOfWall}};
+  return report;
+}
+
+nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const RunResults& run) {
+  nlohmann::json report = buildReport(capture, options, run.replay);
+  for (auto& frame : report["frames"])
+    if (auto metrics = run.analysis.frameJson(frame["index"].get<int>()); !metrics.empty()) frame["metrics"] = metrics;
+  report["metrics"] = run.analysis.summaryJson();
   return report;
 }
 

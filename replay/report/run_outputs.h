@@ -9,19 +9,16 @@
 
 #include "capture/capture.h"
 #include "replay_loop/replayer.h"
-#include "report/gpu_total.h"
+#include "run/run.h"
 
 namespace aor {
 
 // ao/NNNN.exr and .png; debug/VIEW/NNNN.exr and .png for a debug view read back.
 void writeFrameImages(const std::filesystem::path& outDir, const FrameOutput& frame);
 void writeDebugImage(const std::filesystem::path& outDir, int frameIndex, const DebugImage& view);
-// Per pass name, every timed duration over all frames and repetitions, in first-seen order.
-std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
-// A frame's pass durations as the totals of report/gpu_total.h take them.
-TimedFrame timedFrame(const FrameRecord& frame);
-std::vector<TimedFrame> timedFrames(const ReplayResult& result);
 nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const ReplayResult& result);
+// The same with the run's metrics: frames[i].metrics and metrics.
+nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options, const RunResults& run);
 // Chrome trace-event format: one track for GPU passes, one for the host's per-frame phases.
 nlohmann::json buildTrace(const ReplayResult& result);
 // Writes `text` to `path`; throws std::runtime_error "cannot write PATH" on failure.

@@ -7,6 +7,8 @@
 #include <fmt/ranges.h>
 
 #include "core/input_error.h"
+#include "core/stats.h"
+#include "report/run_outputs.h"
 #include "report/svg_plot.h"
 #include "techniques/registry.h"
 
@@ -359,6 +361,27 @@ std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows) {
   std::vector<const SweepRow*> pointers;
   for (const auto& row : rows) pointers.push_back(&row);
   return passNames(pointers);
+}
+
+SweepRow sweepRow(const SweepConfig& config, const RunResults& results) {
+  SweepRow row{config};
+  for (const auto& [name, durations] : samplesByPass(results.replay)) row.passMs.emplace_back(name, summarize(durations).median);
+  row.totalMs = totalMedianMs(timedFrames(results.replay));
+  row.error = results.analysis.summaryJson()["error"];
+  row.rmse = row.error["rmse"].get<double>();
+  row.ssim = row.error["ssim"].get<double>();
+  const auto& band = row.error["halo_band"];
+  row.haloPixels = band["pixels"].get<int64_t>();
+  row.haloRmse = band["rmse"].get<double>();
+  row.haloBias = band["bias"].get<double>();
+  const std::string& samples = config.settings.technique().samplesValue;
+  if (samples.empty()) return row;
+  for (const auto& frame : results.replay.frames)
+    if (auto spp = frame.techniqueValues.find(samples); spp != frame.techniqueValues.end()) {
+      row.sppMin = row.sppMin == 0 ? spp->second : std::min(row.sppMin, spp->second);
+      row.sppMax = std::max(row.sppMax, spp->second);
+    }
+  return row;
 }
 
 }  // namespace aor

@@ -9,7 +9,9 @@
 
 #include <functional>
 
+#include "run/run.h"
 #include "technique_api/settings.h"
+#include "techniques/registry.h"
 
 namespace aor {
 
@@ -26,7 +28,7 @@ struct SweepRequest {
   std::vector<std::string> presets;      // empty: every preset of each technique
   std::vector<std::string> grid;         // "KEY=v1,v2,...": a technique's key, or `technique`
   std::vector<std::string> assignments;  // --set KEY=VALUE, before the grid
-  std::string defaultTechnique = "gtao"; // without a technique axis
+  std::string defaultTechnique = aor::defaultTechnique().name;  // without a technique axis
   size_t maxConfigurations = kDefaultMaxConfigurations;
 };
 struct SweepPlan {
@@ -53,11 +55,14 @@ struct SweepRow {
   double haloRmse = 0, haloBias = 0;  // over the halo band (error.halo_band; 0 pixels: both 0)
   int64_t haloPixels = 0;
   bool pareto = false;
-  // Techniques that accumulate samples over frames (frames[i].technique.accumulated_spp, rtao):
-  // the samples per pixel its frames reached, least and most; 0 for the others.
+  // Techniques that accumulate samples over frames (Technique::samplesValue): the samples per pixel
+  // its frames reached, least and most; 0 for the others.
   double sppMin = 0, sppMax = 0;
   std::string samplesLabel() const;  // "4-64 spp", or "" for a technique without them
 };
+
+// A configuration's row from its run (error against the sweep's references, no temporal metrics).
+SweepRow sweepRow(const SweepConfig& config, const RunResults& results);
 
 // The error a sweep ranks and plots by: RMSE over every surface pixel, or over the halo band only.
 enum class SweepRank { Rmse, HaloBand };

@@ -21,7 +21,7 @@ PlotSeries perFrameSeries(const nlohmann::json& frames, const std::string& key, 
   return s;
 }
 
-void writePerFramePlot(const std::filesystem::path& outDir, const nlohmann::json& report) {
+void writePerFramePlot(const std::filesystem::path& outDir, const nlohmann::json& report, const std::string& noHistoryReason) {
   const auto& frames = report["frames"];
   std::vector<PlotSeries> series;
   for (auto [key, name] : {std::pair{"warping_error", "warping error (MSE vs previous output, reprojected)"},
@@ -35,7 +35,7 @@ void writePerFramePlot(const std::filesystem::path& outDir, const nlohmann::json
   options.yLabel = "error (visibility, 0-1; warping error: squared)";
   options.logY = true;  // warping error (MSE) sits orders of magnitude below the absolute errors
   for (const auto& f : frames)
-    if (f.value("history", "") == "reset" && f.value("reset_reason", "") != "temporal=0") {
+    if (f.value("history", "") == "reset" && (noHistoryReason.empty() || f.value("reset_reason", "") != noHistoryReason)) {
       options.verticalMarkers.push_back(f["index"].get<double>());
       options.verticalMarkerLabels.push_back(f.value("reset_reason", "reset"));
     }
@@ -65,9 +65,9 @@ void writeResponsePlot(const std::filesystem::path& outDir, const nlohmann::json
 
 }  // namespace
 
-void writeTemporalPlots(const std::filesystem::path& outDir, const nlohmann::json& report) {
+void writeTemporalPlots(const std::filesystem::path& outDir, const nlohmann::json& report, const std::string& noHistoryReason) {
   if (!report.contains("frames") || report["frames"].size() < 2) return;
-  writePerFramePlot(outDir, report);
+  writePerFramePlot(outDir, report, noHistoryReason);
   if (report.contains("metrics") && report["metrics"].contains("temporal")) writeResponsePlot(outDir, report["metrics"]["temporal"]);
 }
 

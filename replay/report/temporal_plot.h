@@ -11,6 +11,7 @@
 namespace aor {
 
 // Writes the plots that have data; nothing for runs with fewer than 2 frames.
-void writeTemporalPlots(const std::filesystem::path& outDir, const nlohmann::json& report);
+// `noHistoryReason` (ReplayResult::noHistoryReason): resets of that reason are not marked.
+void writeTemporalPlots(const std::filesystem::path& outDir, const nlohmann::json& report, const std::string& noHistoryReason);
 
 }  // namespace aor

@@ -7,38 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tune/tuner.h"
+#include "tune/tuning.h"
 
 namespace aor {
-
-// One capture replayed under one configuration.
-struct CaptureScore {
-  std::string capture;
-  int frames = 0;         // frames with a reference, scored
-  double rmse = 0, mse = 0, ssim = 0;
-  double flip = 0;        // mean LDR-FLIP; only computed for --objective flip
-  double objective = 0;   // of the run's --objective
-  double ms = 0;          // median compute total per frame
-};
-
-struct ConfigScore {
-  std::vector<CaptureScore> captures;
-  double objective = 0;  // mean over the captures
-  double ms = 0;         // mean over the captures
-};
-
-struct TuneRun {
-  std::string technique, preset, objective, device;
-  std::vector<std::string> assignments;   // fixed --set values
-  std::vector<TuneDimension> dimensions;  // radius appears as radius_scale
-  std::vector<std::string> training, holdout;
-  std::string frames;                     // --frames as given, empty for all
-  double budgetMs = 0;                    // 0: none
-  TuneResult search;
-  std::vector<ConfigScore> trainingScores;  // one per evaluation, in order
-  ConfigScore trainingBefore, trainingAfter, holdoutBefore, holdoutAfter;
-  nlohmann::json settingsFile;            // what tuned.settings.json holds
-};
 
 nlohmann::json tuneJson(const TuneRun& run);
 nlohmann::json tuneTimesJson(const TuneRun& run);

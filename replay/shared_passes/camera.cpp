@@ -19,4 +19,18 @@ ProjectionParams projectionParams(const glm::mat4& p, int width, int height) {
   return params;
 }
 
+ForwardViewCamera forwardViewCamera(const ProjectionParams& params) {
+  ForwardViewCamera c;
+  // This tool's distance = P32 / (d + P22) is their z = mul / (add - d) with mul = -P32, add = -P22.
+  c.depthUnpack = {-params.projection32, -params.projection22};
+  // Their 1 / P11 assumes D3D's y-up NDC; this tool's captures have Vulkan's (P11 < 0).
+  c.tanHalfFov = glm::abs(params.ndcToViewMul);
+  // view.xy = dist * (ndc * mul + add) with ndc = 2 uv - 1; their axes point right and up with uv's
+  // origin at the top left, so mul.x > 0 and mul.y < 0 there.
+  c.axisSigns = {params.ndcToViewMul.x >= 0.0f ? 1.0f : -1.0f, params.ndcToViewMul.y >= 0.0f ? -1.0f : 1.0f};
+  c.ndcToViewMul = 2.0f * params.ndcToViewMul * c.axisSigns;
+  c.ndcToViewAdd = (params.ndcToViewAdd - params.ndcToViewMul) * c.axisSigns;
+  return c;
+}
+
 }  // namespace aor

@@ -16,4 +16,18 @@ struct ProjectionParams {
 
 ProjectionParams projectionParams(const glm::mat4& projection, int width, int height);
 
+// The camera as techniques written for D3D conventions (XeGTAO, CACAO) take it: view space x right,
+// y up, z forward, uv's origin at the top left, z = depthUnpack.x / (depthUnpack.y - depth) and
+// view.xy = z (uv * ndcToViewMul + ndcToViewAdd). Derived from this tool's projection, so their own
+// handedness fix-ups are not needed; an axis the capture's projection points the other way is
+// flipped (axisSigns, which also turn this tool's view-space vectors into theirs with z negated).
+struct ForwardViewCamera {
+  glm::vec2 depthUnpack{0.0f};
+  glm::vec2 tanHalfFov{0.0f};
+  glm::vec2 axisSigns{1.0f};
+  glm::vec2 ndcToViewMul{0.0f};
+  glm::vec2 ndcToViewAdd{0.0f};
+};
+ForwardViewCamera forwardViewCamera(const ProjectionParams& params);
+
 }  // namespace aor

@@ -10,8 +10,6 @@ namespace {
 
 constexpr const char* kAoHistory = "ao_history";
 
-SpecializationValue spec(int id, bool on) { return {uint32_t(id), on ? 1u : 0u}; }
-
 // The AO images' format is fixed in each SPIR-V (lavapipe cannot read storage images without a
 // format), hence one module per aoImageFormat(bent).
 std::string formatSuffix(bool bent) { return bent ? "rgba16f" : "r16f"; }
@@ -34,8 +32,8 @@ graph::ResourceId addTemporalShaderPass(const char* name, FrameBuilder& frame, c
   graph::ResourceId historyAo = hasHistory ? t.historyAo : t.current;
   graph::ResourceId historyDistance = hasHistory ? t.historyDistance : t.distance;
   std::string shader = "blocks/temporal_denoise_" + formatSuffix(in.bent);
-  SpecializationValue values[] = {spec(shader::kTemporalSpecBent, in.bent), spec(shader::kTemporalSpecHistory, hasHistory),
-                                  spec(shader::kTemporalSpecHalfResolution, in.divisor == 2)};
+  SpecializationValue values[] = {specializationValue(shader::kTemporalSpecBent, in.bent), specializationValue(shader::kTemporalSpecHistory, hasHistory),
+                                  specializationValue(shader::kTemporalSpecHalfResolution, in.divisor == 2)};
   std::vector<SpecializationValue> specialization(std::begin(values), std::end(values));
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
@@ -71,8 +69,9 @@ Parameter temporalParameter(double defaultWeight) {
 }
 
 HistoryNeeds temporalDenoiseHistory(const Settings& settings) {
-  bool keeps = settings.f(kTemporalKey) > 0.0f;
-  return {keeps, keeps, keeps ? "" : "temporal=0"};
+  float weight = settings.f(kTemporalKey);
+  bool keeps = weight > 0.0f;
+  return {keeps, keeps, keeps ? "" : "temporal=0", weight};
 }
 
 std::optional<Settings> withoutTemporalDenoise(const Settings& settings) {
@@ -96,8 +95,8 @@ graph::ResourceId addSpatialDenoise(FrameBuilder& frame, const DenoiseInput& in)
   auto ao = in.ao;
   auto& pipelines = frame.pipelines();
   std::string suffix = formatSuffix(in.bent);
-  std::vector<SpecializationValue> columns{spec(shader::kSpatialSpecHalfResolution, in.divisor == 2)};
-  std::vector<SpecializationValue> rows{spec(shader::kSpatialSpecBent, in.bent)};
+  std::vector<SpecializationValue> columns{specializationValue(shader::kSpatialSpecHalfResolution, in.divisor == 2)};
+  std::vector<SpecializationValue> rows{specializationValue(shader::kSpatialSpecBent, in.bent)};
   // The 5x5 blur in two dispatches, vertical legs then rows (why: shaders/blocks/spatial_denoise.h).
   // A spatial_columns thread sums a strip of kSpatialStrip pixels of one column.
   g.addPass(

@@ -12,23 +12,11 @@
 #include <glm/glm.hpp>
 
 #include "graph/render_graph.h"
+#include "technique_api/frame_camera.h"
 #include "technique_api/settings.h"
 #include "vk/pipeline_cache.h"
 
 namespace aor {
-
-struct FrameCamera {
-  glm::mat4 view{1.0f};
-  glm::mat4 projection{1.0f};
-  int width = 0, height = 0;
-  uint32_t frameIndex = 0;  // the frame's index in the capture: noise depends on it, nothing else
-};
-
-// What a capture carries besides depth (identical in every frame).
-struct CaptureLayout {
-  bool normals = false;
-  bool depth2 = false;
-};
 
 // Where the final visibility (and bent normals) sit in the output image, whatever its format.
 struct OutputLayout {

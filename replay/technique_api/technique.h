@@ -45,6 +45,9 @@ struct HistoryNeeds {
   bool keeps = false;     // it declares history images (FrameBuilder::history)
   bool distance = false;  // it reads last frame's linear distance (FrameBuilder::previousDistance)
   std::string whyNot;     // when it keeps none: the setting behind that ("temporal=0"), for reset reasons
+  // Where the output is an exponential moving average over frames (seed 000's temporal block): the
+  // weight of last frame's output. The temporal metrics predict ghosting from it; 0: no such average.
+  float blendWeight = 0.0f;
 };
 
 // What a technique keeps for a whole replay beyond history images (a BVH, compiled user shaders):
@@ -81,6 +84,9 @@ struct Technique {
   InputNeeds inputs;
   std::vector<DebugView> debugViews;
   AccuracyBounds bounds;
+  // The FrameBuilder::reportValue key holding the samples per pixel a frame's output averages
+  // (accumulated over frames), when it has one: sweep shows its range. Empty: none.
+  std::string samplesValue;
   bool testOnly = false;  // registered by tests, never listed to users
   std::string file;       // a user technique's technique.json as --technique named it; empty for built-ins
 

@@ -43,4 +43,6 @@ void registerTechnique(const Technique* technique) {
   registry().push_back(technique);
 }
 
+const Technique& defaultTechnique() { return gtaoTechnique(); }
+
 }  // namespace aor

@@ -13,6 +13,8 @@ std::vector<const Technique*> userTechniques();
 // user technique's technique.json (techniques/user/user_technique.h), loaded on first use. Throws
 // InputError (field --technique) listing the user techniques, or naming the file and key.
 const Technique& findTechnique(std::string_view name);
+// --technique's default where a command has one: seed 000's GTAO.
+const Technique& defaultTechnique();
 // Tests only: adds a technique (testOnly ones are never listed to users). The pointer must outlive
 // the program's use of it.
 void registerTechnique(const Technique* technique);

@@ -89,6 +89,8 @@ struct SpecializationValue {
   uint32_t id;
   uint32_t value;  // ints and bools (VkBool32) alike
 };
+// A shader header's constant id with an int or bool value (true is 1, as VkBool32).
+inline SpecializationValue specializationValue(int64_t id, int64_t value) { return {uint32_t(id), uint32_t(value)}; }
 
 // Bindings, push-constant size and workgroup size come from the SPIR-V (vk/shader_reflection.h);
 // `name` names the shader in errors.

@@ -49,10 +49,11 @@ std::string passTimesHtml(const json& report) {
   return barChartSvg(bars, "GPU time per frame (ms): bar = median, whiskers = min to max over frames x repetitions");
 }
 
-// The frames where history was reset (not the no-temporal resets of every frame), with the reason.
-void markResets(const json& frames, PlotOptions& options) {
+// The frames where history was reset (not the resets of every frame of a run that keeps no
+// history, whose reason is `noHistoryReason`), with the reason.
+void markResets(const json& frames, const std::string& noHistoryReason, PlotOptions& options) {
   for (const auto& f : frames)
-    if (f.value("history", "") == "reset" && f.value("reset_reason", "") != "temporal=0") {
+    if (f.value("history", "") == "reset" && (noHistoryReason.empty() || f.value("reset_reason", "") != noHistoryReason)) {
       options.verticalMarkers.push_back(f["index"].get<double>());
       options.verticalMarkerLabels.push_back("reset: " + f.value("reset_reason", "?"));
     }
@@ -78,7 +79,7 @@ std::optional<double> numberAt(const json& j, std::initializer_list<const char*>
   return node->is_number() ? std::optional<double>(node->get<double>()) : std::nullopt;
 }
 
-std::string frameTimesHtml(const json& report) {
+std::string frameTimesHtml(const json& report, const std::string& noHistoryReason) {
   std::vector<PlotSeries> series;
   for (const auto& p : report["passes"]) {
     std::string name = text(p["name"]);
@@ -90,11 +91,11 @@ std::string frameTimesHtml(const json& report) {
   options.yLabel = "GPU time (ms)";
   options.width = 1000;
   options.height = 420;
-  markResets(report["frames"], options);
+  markResets(report["frames"], noHistoryReason, options);
   return svgPlot(series, options);
 }
 
-std::string metricsOverTimeHtml(const json& report) {
+std::string metricsOverTimeHtml(const json& report, const std::string& noHistoryReason) {
   const json& frames = report["frames"];
   std::vector<PlotSeries> series;
   auto add = [&](const std::string& name, std::initializer_list<const char*> path) {
@@ -119,7 +120,7 @@ std::string metricsOverTimeHtml(const json& report) {
   options.logY = true;
   options.width = 1000;
   options.height = 460;
-  markResets(frames, options);
+  markResets(frames, noHistoryReason, options);
   return svgPlot(series, options);
 }
 
@@ -189,11 +190,11 @@ std::string runPageHtml(const RunPage& page) {
   Page html(fmt::format("aoreplay run: {} with {}", text(r["capture"]["name"]), text(r["settings"].value("technique", json("?")))));
   html.section("overview", "Run", overviewHtml(page));
   html.section("pass-times", "GPU time per pass", passTimesHtml(r));
-  html.section("frame-times", "GPU time per frame", frameTimesHtml(r));
+  html.section("frame-times", "GPU time per frame", frameTimesHtml(r, page.noHistoryReason));
   html.section("images", "Frames: AO, reference, error, flicker", frameImagesHtml(page.frames));
-  html.section("metrics-over-time", "Error and temporal stability over time", metricsOverTimeHtml(r));
+  html.section("metrics-over-time", "Error and temporal stability over time", metricsOverTimeHtml(r, page.noHistoryReason));
   html.section("passes", "Passes run and culled", passesHtml(r));
-  html.section("graph", "Render graph (last frame)", graphHtml(page.graphDot));
+  html.section("graph", "Render graph (last frame)", graphHtml(graph::toDot(page.graph.declared, page.graph.compiled)));
   html.section("memory", "Memory per resource", memoryHtml(r["memory"]));
   return html.html();
 }

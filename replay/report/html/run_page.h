@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "graph/render_graph.h"
 #include "report/html/frame_images.h"
 
 namespace aor::html {
@@ -16,8 +17,9 @@ namespace aor::html {
 struct RunPage {
   const nlohmann::json& report;    // as written to report.json
   std::vector<FrameImages> frames;  // framesToShow()'s frames
-  std::string graphDot;             // graph::toDot of the run's last frame
+  const graph::GraphSnapshot& graph;  // the run's last frame, drawn
   std::vector<std::string> summaryLines;  // the terminal's error and temporal lines
+  std::string noHistoryReason;  // ReplayResult::noHistoryReason: such resets are not marked
 };
 
 std::string runPageHtml(const RunPage& page);

@@ -28,27 +28,6 @@ void setPatternRotScale(shader::CacaoConstants& c, int pass) {
 
 }  // namespace
 
-CacaoSettings cacaoSettings(const Settings& s) {
-  CacaoSettings c;
-  c.radius = s.f(kRadiusKey);
-  c.quality = CacaoQuality(s.i("quality"));
-  c.shadowMultiplier = s.f("shadow_multiplier");
-  c.shadowPower = s.f("shadow_power");
-  c.shadowClamp = s.f("shadow_clamp");
-  c.horizonAngleThreshold = s.f("horizon_angle_threshold");
-  c.fadeOutFrom = s.f("fade_out_from");
-  c.fadeOutTo = s.f("fade_out_to");
-  c.adaptiveQualityLimit = s.f("adaptive_quality_limit");
-  c.blurPassCount = s.i("blur_pass_count");
-  c.sharpness = s.f("sharpness");
-  c.detailShadowStrength = s.f("detail_shadow_strength");
-  c.generateNormals = s.b("generate_normals");
-  c.bilateralSigmaSquared = s.f("bilateral_sigma_squared");
-  c.bilateralSimilarityDistanceSigma = s.f("bilateral_similarity_distance_sigma");
-  c.downsample = s.b("downsample");
-  return c;
-}
-
 bool cacaoGeneratesNormals(const CacaoSettings& settings, const CaptureLayout& capture) {
   return settings.generateNormals || !capture.normals;
 }
@@ -74,17 +53,12 @@ std::array<shader::CacaoConstants, shader::kCacaoLayers> cacaoConstants(const Fr
   // 9: PostprocessImportanceMapB adds every ninth texel only.
   c.loadCounterAvgDiv = 9.0f / float(double(sizes.importanceMap.x * sizes.importanceMap.y) * 255.0);
 
-  // This tool's distance = P32 / (d + P22) is CACAO's z = mul / (add - d) with mul = -P32,
-  // add = -P22 (derived here, so FidelityFX's handedness fix-up of the two is not needed).
-  c.depthUnpackConsts = {-params.projection32, -params.projection22};
-  // FidelityFX's 1 / P11 assumes D3D's y-up NDC; this tool's captures have Vulkan's (P11 < 0).
-  c.cameraTanHalfFov = glm::abs(params.ndcToViewMul);
-  // CACAO's NDCToView maps uv (origin top left) to x right, y up: 2 tan x uv.x - tan x,
-  // -2 tan y uv.y + tan y for a centred projection. From this tool's view.xy = dist (ndc mul + add)
-  // with ndc = 2 uv - 1, flipping an axis the capture's projection points the other way.
-  glm::vec2 signs{params.ndcToViewMul.x >= 0.0f ? 1.0f : -1.0f, params.ndcToViewMul.y >= 0.0f ? -1.0f : 1.0f};
-  c.ndcToViewMul = 2.0f * params.ndcToViewMul * signs;
-  c.ndcToViewAdd = (params.ndcToViewAdd - params.ndcToViewMul) * signs;
+  ForwardViewCamera forward = forwardViewCamera(params);  // CACAO's view space and uv
+  c.depthUnpackConsts = forward.depthUnpack;
+  c.cameraTanHalfFov = forward.tanHalfFov;
+  glm::vec2 signs = forward.axisSigns;
+  c.ndcToViewMul = forward.ndcToViewMul;
+  c.ndcToViewAdd = forward.ndcToViewAdd;
   // The depth buffer is the output's size (ratio 1, no border).
   c.depthBufferUvToViewMul = c.ndcToViewMul;
   c.depthBufferUvToViewAdd = c.ndcToViewAdd;

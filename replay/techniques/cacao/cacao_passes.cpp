@@ -15,8 +15,6 @@ using graph::Access;
 using graph::ResourceId;
 using graph::Subresources;
 
-SpecializationValue spec(int id, int value) { return {uint32_t(id), uint32_t(value)}; }
-
 constexpr uint32_t kAdaptiveTapCounters = 4;  // extra taps, pixels where importance >= 0.5; then below
 
 // The deinterleaved depth's MIP chain: FidelityFX's four levels, fewer where a layer is too small.
@@ -68,9 +66,9 @@ ResourceId addPrepareDepths(CacaoFrame& f) {
   glm::uvec2 size = f.sizes.deinterleavedDepth;
   uint32_t levels = mips ? cacaoDepthMipLevels(size) : 1u;
   ResourceId depths = f.layerImage("cacao_deinterleaved_depths", size, VK_FORMAT_R16_SFLOAT, levels);
-  std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecDownsampled, f.settings.downsample),
-                                                  spec(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality)),
-                                                  spec(shader::kCacaoSpecDepthMipLevels, int(levels))};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kCacaoSpecDownsampled, f.settings.downsample),
+                                                  specializationValue(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality)),
+                                                  specializationValue(shader::kCacaoSpecDepthMipLevels, int(levels))};
   ResourceId constants = f.constants, depth = f.frame.depth();
   auto& pipelines = f.pipelines();
   f.g().addPass(
@@ -97,7 +95,7 @@ ResourceId addPrepareDepths(CacaoFrame& f) {
 // FFX_CACAO_Prepare{Native,Downsampled}Normals (from depth) or ..NormalsFromInputNormals.
 ResourceId addPrepareNormals(CacaoFrame& f) {
   ResourceId normals = f.layerImage("cacao_deinterleaved_normals", f.sizes.ssao, VK_FORMAT_R8G8B8A8_SNORM);
-  std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecDownsampled, f.settings.downsample)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kCacaoSpecDownsampled, f.settings.downsample)};
   ResourceId constants = f.constants;
   ResourceId source = f.generateNormals ? f.frame.depth() : f.frame.worldNormals();
   std::string shader = f.generateNormals ? "cacao/prepare_normals" : "cacao/prepare_normals_from_input";
@@ -124,9 +122,9 @@ struct Prepared {
 ResourceId addGenerate(CacaoFrame& f, const Prepared& in, const std::string& passName, bool adaptiveBase) {
   ResourceId ssao = f.layerImage(adaptiveBase ? "cacao_ssao_base" : "cacao_ssao", f.sizes.ssao, VK_FORMAT_R8G8_UNORM);
   int quality = cacaoShaderQuality(f.settings.quality);
-  std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecQuality, quality),
-                                                  spec(shader::kCacaoSpecAdaptiveBase, adaptiveBase),
-                                                  spec(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality))};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kCacaoSpecQuality, quality),
+                                                  specializationValue(shader::kCacaoSpecAdaptiveBase, adaptiveBase),
+                                                  specializationValue(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality))};
   ResourceId constants = f.constants;
   glm::uvec3 grid{f.sizes.ssao, f.layers};
   auto& pipelines = f.pipelines();
@@ -194,7 +192,7 @@ ResourceId addImportanceMap(CacaoFrame& f, ResourceId base) {
 // adaptive_taps the counting build, whose counters are read back into report.json.
 ResourceId addGenerateAdaptive(CacaoFrame& f, const Prepared& in, ResourceId base, ResourceId importance) {
   ResourceId ssao = f.layerImage("cacao_ssao", f.sizes.ssao, VK_FORMAT_R8G8_UNORM);
-  std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecQuality, 3)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kCacaoSpecQuality, 3)};
   bool countTaps = f.frame.wantsDebugView("adaptive_taps");
   ResourceId taps = graph::kNoResource;
   if (countTaps) {
@@ -243,9 +241,9 @@ ResourceId addEdgeSensitiveBlur(CacaoFrame& f, ResourceId ssao) {
   ResourceId blurred = f.layerImage("cacao_ssao_blurred", f.sizes.ssao, VK_FORMAT_R8G8_UNORM);
   int passes = f.settings.blurPassCount;
   bool smallLayer = int(std::min(f.sizes.ssao.x, f.sizes.ssao.y)) < shader::kCacaoMaxBlurPasses;  // the mirror's periodic form
-  std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecBlurPasses, passes),
-                                                  spec(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality)),
-                                                  spec(shader::kCacaoSpecSmallLayer, smallLayer)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kCacaoSpecBlurPasses, passes),
+                                                  specializationValue(shader::kCacaoSpecHalf, cacaoTwoLayers(f.settings.quality)),
+                                                  specializationValue(shader::kCacaoSpecSmallLayer, smallLayer)};
   // Each workgroup writes its 64x48 tile less blur_pass_count pixels on each side.
   uint32_t tileW = uint32_t(shader::kCacaoBlurTileWidth) * shader::kCacaoBlurWorkgroup - 2 * uint32_t(passes);
   uint32_t tileH = uint32_t(shader::kCacaoBlurTileHeight) * shader::kCacaoBlurWorkgroup - 2 * uint32_t(passes);
@@ -279,7 +277,7 @@ ResourceId addReinterleave(CacaoFrame& f, ResourceId ssao, ResourceId depths) {
   glm::uvec2 size = f.sizes.inputOutput;
   ResourceId ao = f.g().createImage("cacao_ao", {size.x, size.y, VK_FORMAT_R8_UNORM});
   std::vector<SpecializationValue> specialization{
-      spec(shader::kCacaoSpecVariant, reinterleaveVariant(f.settings.quality, f.settings.downsample))};
+      specializationValue(shader::kCacaoSpecVariant, reinterleaveVariant(f.settings.quality, f.settings.downsample))};
   ResourceId constants = f.constants, depth = f.frame.depth();
   bool upscale = f.settings.downsample;
   auto& pipelines = f.pipelines();
@@ -314,8 +312,8 @@ void addTiledDebugView(CacaoFrame& f, const std::string& name, ResourceId layers
   glm::uvec2 size = 2u * layerSize;
   ResourceId tiled = f.g().createImage("debug_" + name, {size.x, size.y, VK_FORMAT_R16G16B16A16_SFLOAT});
   int mask = cacaoTwoLayers(f.settings.quality) ? 0b1001 : 0b1111;
-  std::vector<SpecializationValue> specialization{spec(shader::kCacaoSpecLayerMask, mask),
-                                                  spec(shader::kCacaoSpecFirstChannel, firstChannel)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kCacaoSpecLayerMask, mask),
+                                                  specializationValue(shader::kCacaoSpecFirstChannel, firstChannel)};
   auto& pipelines = f.pipelines();
   f.g().addPass(
       "debug_" + name,

@@ -2,11 +2,10 @@
 #include "shared_passes/shared_passes.h"
 #include "shared_passes/camera.h"
 #include "runtime/pass_context.h"
-#include "techniques/gtao/gtao_settings.h"
+#include "techniques/gtao/gtao_pass.h"
 
 namespace aor {
 namespace {
-SpecializationValue spec(int id, int value) { return {uint32_t(id), uint32_t(value)}; }
 }  // namespace
 
 shader::GtaoConstants gtaoConstants(const FrameCamera& camera, const GtaoSettings& settings) {
@@ -43,9 +42,9 @@ graph::ResourceId addGtaoPass(FrameBuilder& frame, const GtaoSettings& settings,
   glm::uvec2 size(aoWorkingSize(frame.camera(), settings));
   auto ao = frame.graph().createImage("ao_noisy", {size.x, size.y, shared_passes::aoImageFormat(settings.bent)});
   std::vector<SpecializationValue> specialization{
-      spec(shader::kGtaoSpecSlices, settings.slices), spec(shader::kGtaoSpecSteps, settings.steps),
-      spec(shader::kGtaoSpecBent, settings.bent),     spec(shader::kGtaoSpecViewNormals, inputs.viewSpaceNormals),
-      spec(shader::kGtaoSpecThin, settings.thin > 0.0f), spec(shader::kGtaoSpecHalfResolution, settings.halfRes)};
+      specializationValue(shader::kGtaoSpecSlices, settings.slices), specializationValue(shader::kGtaoSpecSteps, settings.steps),
+      specializationValue(shader::kGtaoSpecBent, settings.bent),     specializationValue(shader::kGtaoSpecViewNormals, inputs.viewSpaceNormals),
+      specializationValue(shader::kGtaoSpecThin, settings.thin > 0.0f), specializationValue(shader::kGtaoSpecHalfResolution, settings.halfRes)};
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
       "gtao",

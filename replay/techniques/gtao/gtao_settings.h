@@ -1,11 +1,12 @@
 #pragma once
 // Seed 000's GTAO pipeline (GTAO -> spatial -> temporal): its settings as the shaders and the CPU
 // mirror use them, read from a run's Settings, and the per-frame constants of the GTAO pass. The
-// keys themselves are declared once, in gtao_technique.cpp.
+// keys themselves are declared once, in gtao_technique.cpp; the passes are in gtao_pass.h.
+// Nothing here needs a device: the CPU mirror (replay/cpu/) computes the same constants.
 #include <glm/glm.hpp>
 
 #include "gtao/gtao.h"
-#include "technique_api/frame_builder.h"
+#include "technique_api/frame_camera.h"
 #include "technique_api/settings.h"
 
 namespace aor {
@@ -37,16 +38,5 @@ inline int aoResolutionDivisor(const GtaoSettings& s) { return s.halfRes ? 2 : 1
 glm::ivec2 aoWorkingSize(const FrameCamera& camera, const GtaoSettings& settings);
 // Push constants of the GTAO pass for a frame (shared with the CPU mirror).
 shader::GtaoConstants gtaoConstants(const FrameCamera& camera, const GtaoSettings& settings);
-
-// The GTAO pass (shaders/gtao/gtao.comp): writes `ao_noisy` in aoImageFormat(bent) at
-// aoWorkingSize. `viewSpaceNormals` tells captured (world space) from reconstructed normals.
-struct GtaoInputs {
-  graph::ResourceId distance;
-  graph::ResourceId normals;
-  bool viewSpaceNormals;
-};
-graph::ResourceId addGtaoPass(FrameBuilder& frame, const GtaoSettings& settings, const GtaoInputs& inputs);
-// The normals GTAO reads: the capture's world-space ones, else those reconstructed from depth.
-GtaoInputs gtaoInputs(const FrameBuilder& frame);
 
 }  // namespace aor

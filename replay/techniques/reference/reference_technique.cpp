@@ -7,7 +7,7 @@
 
 #include "shared_passes/shared_passes.h"
 #include "runtime/pass_context.h"
-#include "techniques/gtao/gtao_settings.h"
+#include "techniques/gtao/gtao_pass.h"
 #include "techniques/registry.h"
 
 namespace aor {
@@ -15,17 +15,15 @@ namespace {
 
 constexpr int kReferenceSlices = 32;
 
-SpecializationValue spec(int id, int value) { return {uint32_t(id), uint32_t(value)}; }
-
 void addReferencePass(FrameBuilder& frame, const Settings& settings) {
   GtaoSettings g = gtaoSettings(settings);  // radius, falloff, power, thin and bent: the same meaning as gtao's
   GtaoInputs inputs = gtaoInputs(frame);
   auto constants = gtaoConstants(frame.camera(), g);
   auto ao = frame.graph().createImage("ao_reference", {frame.size().x, frame.size().y, shared_passes::aoImageFormat(g.bent)});
-  std::vector<SpecializationValue> specialization{spec(shader::kGtaoSpecSlices, kReferenceSlices),
-                                                  spec(shader::kGtaoSpecBent, g.bent),
-                                                  spec(shader::kGtaoSpecViewNormals, inputs.viewSpaceNormals),
-                                                  spec(shader::kGtaoSpecThin, g.thin > 0.0f)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kGtaoSpecSlices, kReferenceSlices),
+                                                  specializationValue(shader::kGtaoSpecBent, g.bent),
+                                                  specializationValue(shader::kGtaoSpecViewNormals, inputs.viewSpaceNormals),
+                                                  specializationValue(shader::kGtaoSpecThin, g.thin > 0.0f)};
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
       "gtao_reference",

@@ -15,6 +15,7 @@
 #include "core/input_error.h"
 #include "runtime/pass_context.h"
 #include "technique_api/frame_builder.h"
+#include "technique_api/key_table.h"
 #include "techniques/registry.h"
 #include "techniques/rtao/rtao_accel.h"
 #include "techniques/rtao/rtao_bvh.h"
@@ -25,16 +26,48 @@
 namespace aor {
 namespace {
 
-constexpr const char* kSamples = "samples";
-constexpr const char* kPower = "power";
-constexpr const char* kDistanceBased = "distance_based";
 constexpr const char* kAccumulate = "accumulate";
-constexpr const char* kMaxFrames = "max_frames";
-constexpr const char* kTraversal = "traversal";
-constexpr const char* kNormalOffset = "normal_offset";
 constexpr const char* kMean = "rtao_mean";
+constexpr const char* kSamplesValue = "accumulated_spp";
 
 enum class Traversal { Auto, Compute, RayQuery };
+
+struct RtaoSettings {
+  float radius = 2.0f;
+  int samples = 4;
+  float power = 2.0f;
+  bool distanceBased = true;
+  bool accumulate = true;
+  int maxFrames = 0;
+  Traversal traversal = Traversal::Auto;
+  float normalOffset = 1e-4f;
+};
+
+// Every key with its RtaoSettings field; defaults are the struct's.
+const KeyTable<RtaoSettings>& keyTable() {
+  using R = RtaoSettings;
+  static const KeyTable<R> table = {
+      radiusKey(&R::radius),
+      intKey(&R::samples, "samples", 1, 1024, "rays per pixel per frame (AoControl::rtao_samples)"),
+      floatKey(&R::power, "power", 0.0, 16.0, "exponent of each frame's visibility (AoControl::rtao_power; 1 = none)"),
+      boolKey(&R::distanceBased, "distance_based",
+              "1: a hit occludes by 1 - t/radius (closest hit); 0: any hit within the radius occludes fully "
+              "(the reference's definition)"),
+      boolKey(&R::accumulate, kAccumulate,
+              "running mean over frames, restarted on any camera change, a cut, a size or settings change"),
+      intKey(&R::maxFrames, "max_frames", 0, 1000000, "frames a mean accumulates at most, then it is kept (0 = no cap)"),
+      enumKey(&R::traversal, "traversal", {"auto", "compute", "rayquery"},
+              "ray traversal: compute (a compute-shader BVH, every device), rayquery (acceleration structures "
+              "and ray queries; exit 3 on a device without VK_KHR_ray_query and VK_KHR_acceleration_structure), "
+              "auto (rayquery where the device has both, else compute)"),
+      floatKey(&R::normalOffset, "normal_offset", 0.0, 0.1,
+               "ray origins move this many world units per unit of view distance (at least 1) along the normal "
+               "before OffsetRay: the depth buffer's position is only within its precision of the surface"),
+  };
+  return table;
+}
+
+RtaoSettings rtaoSettings(const Settings& settings) { return keyTable().read(settings); }
 const std::vector<std::string> kRayQueryExtensions = {kRayQueryExtension, kAccelerationStructureExtension};
 
 // What the rays traverse: the BVH on the device (or only its sizes, for `aoreplay graph`), or the
@@ -102,7 +135,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 // (a run asks for them where the device offers them: rtaoDeviceExtensions). Without a device
 // (`aoreplay graph`) only an explicit rayquery does.
 bool usesRayQuery(const Settings& settings, const VulkanContext* vk) {
-  switch (Traversal(settings.i(kTraversal))) {
+  switch (rtaoSettings(settings).traversal) {
     case Traversal::RayQuery: return true;
     case Traversal::Compute: return false;
     case Traversal::Auto: return vk && vk->enabled(kRayQueryExtension) && vk->enabled(kAccelerationStructureExtension);
@@ -165,7 +198,7 @@ void checkRtaoCapture(const Settings&, const Capture& capture) {
 }
 
 std::vector<std::string> missingRtaoExtensions(const Settings& settings, const DeviceInfo& device) {
-  if (Traversal(settings.i(kTraversal)) != Traversal::RayQuery) return {};
+  if (rtaoSettings(settings).traversal != Traversal::RayQuery) return {};
   std::vector<std::string> missing;
   for (const auto& e : kRayQueryExtensions)
     if (!device.hasExtension(e)) missing.push_back(e);
@@ -175,7 +208,7 @@ std::vector<std::string> missingRtaoExtensions(const Settings& settings, const D
 // The ray-query path's extensions, for the context to enable where the device offers them, unless
 // the settings rule that path out.
 std::vector<std::string> rtaoDeviceExtensions(const Settings& settings, const DeviceInfo&) {
-  if (Traversal(settings.i(kTraversal)) == Traversal::Compute) return {};
+  if (rtaoSettings(settings).traversal == Traversal::Compute) return {};
   return kRayQueryExtensions;
 }
 
@@ -193,12 +226,12 @@ struct Accumulation {
 
 Accumulation accumulationOf(FrameBuilder& frame, const Settings& settings, RtaoState& state) {
   Accumulation a;
-  a.continues = settings.b(kAccumulate) && frame.historyWanted() && frame.historyValid() &&
+  a.continues = rtaoSettings(settings).accumulate && frame.historyWanted() && frame.historyValid() &&
                 sameCamera(frame.camera(), frame.previousCamera());
   if (a.continues) {
     auto previous = state.accumulatedFrames.find(frame.previousCamera().frameIndex);
     if (previous == state.accumulatedFrames.end()) throw std::logic_error("rtao: the previous frame's accumulation is unknown");
-    uint32_t cap = uint32_t(settings.i(kMaxFrames));
+    uint32_t cap = uint32_t(rtaoSettings(settings).maxFrames);
     a.hold = cap > 0 && previous->second >= cap;
     a.frames = a.hold ? previous->second : previous->second + 1;
   }
@@ -218,9 +251,10 @@ shader::RtaoConstants traceConstants(const FrameBuilder& frame, const Settings& 
   c.ndcToViewAdd = params.ndcToViewAdd;
   c.invSize = {1.0f / float(cam.width), 1.0f / float(cam.height)};
   c.size = {cam.width, cam.height};
-  c.radius = settings.f(kRadiusKey);
-  c.power = settings.f(kPower);
-  c.normalOffset = settings.f(kNormalOffset);
+  RtaoSettings r = rtaoSettings(settings);
+  c.radius = r.radius;
+  c.power = r.power;
+  c.normalOffset = r.normalOffset;
   c.newWeight = 1.0f / float(a.frames);
   c.frameNumber = a.frames - 1;
   c.hold = a.hold ? 1u : 0u;
@@ -264,9 +298,10 @@ void addRtaoPasses(FrameBuilder& frame, const Settings& settings) {
   bool worldNormals = frame.worldNormals() != graph::kNoResource;
   graph::ResourceId normals = worldNormals ? frame.worldNormals() : frame.reconstructedNormals();
   graph::ResourceId distance = frame.linearDistance();
-  std::vector<SpecializationValue> specialization{{uint32_t(shader::kRtaoSpecSamples), uint32_t(settings.i(kSamples))},
-                                                  {uint32_t(shader::kRtaoSpecDistanceBased), settings.b(kDistanceBased) ? 1u : 0u},
-                                                  {uint32_t(shader::kRtaoSpecWorldNormals), worldNormals ? 1u : 0u}};
+  RtaoSettings r = rtaoSettings(settings);
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kRtaoSpecSamples, r.samples),
+                                                  specializationValue(shader::kRtaoSpecDistanceBased, r.distanceBased),
+                                                  specializationValue(shader::kRtaoSpecWorldNormals, worldNormals)};
   shader::RtaoConstants c = traceConstants(frame, settings, a);
   // Bindings in the shader's order: distance, normals, the scene's buffers, last frame's mean, the mean.
   std::vector<Bind> bindings = {distance, normals};
@@ -290,12 +325,12 @@ void addRtaoPasses(FrameBuilder& frame, const Settings& settings) {
         dispatchCompute(ctx, pipeline, bindings, &c, sizeof(c), groupsFor(pipeline, uint32_t(c.size.x), uint32_t(c.size.y)));
       });
   frame.reportValue("accumulated_frames", a.frames);
-  frame.reportValue("accumulated_spp", double(a.frames) * settings.i(kSamples));
+  frame.reportValue(kSamplesValue, double(a.frames) * r.samples);
   frame.setOutput(mean, OutputLayout::visibilityOnly());
 }
 
 HistoryNeeds rtaoHistory(const Settings& settings) {
-  bool keeps = settings.b(kAccumulate);
+  bool keeps = rtaoSettings(settings).accumulate;
   return {keeps, false, keeps ? "" : "accumulate=0"};
 }
 
@@ -312,25 +347,9 @@ Technique makeRtao() {
   t.summary = "cosine-weighted AO rays from the depth buffer's surfaces against the capture's geometry (a BVH "
               "traversed in a compute shader, or ray queries where the device has them), running mean over frames "
               "while the camera is still";
-  t.parameters = {
-      radiusParameter(2.0),
-      intParameter(kSamples, 4, 1, 1024, "rays per pixel per frame (AoControl::rtao_samples)"),
-      floatParameter(kPower, 2.0, 0.0, 16.0, "exponent of each frame's visibility (AoControl::rtao_power; 1 = none)"),
-      boolParameter(kDistanceBased, true,
-                    "1: a hit occludes by 1 - t/radius (closest hit); 0: any hit within the radius occludes fully "
-                    "(the reference's definition)"),
-      boolParameter(kAccumulate, true,
-                    "running mean over frames, restarted on any camera change, a cut, a size or settings change"),
-      intParameter(kMaxFrames, 0, 0, 1000000, "frames a mean accumulates at most, then it is kept (0 = no cap)"),
-      enumParameter(kTraversal, {"auto", "compute", "rayquery"}, int(Traversal::Auto),
-                    "ray traversal: compute (a compute-shader BVH, every device), rayquery (acceleration structures "
-                    "and ray queries; exit 3 on a device without VK_KHR_ray_query and VK_KHR_acceleration_structure), "
-                    "auto (rayquery where the device has both, else compute)"),
-      floatParameter(kNormalOffset, 1e-4, 0.0, 0.1,
-                     "ray origins move this many world units per unit of view distance (at least 1) along the normal "
-                     "before OffsetRay: the depth buffer's position is only within its precision of the surface"),
-  };
+  t.parameters = keyTable().parameters();
   t.inputs.normals = InputUse::Optional;
+  t.samplesValue = kSamplesValue;
   t.addPasses = addRtaoPasses;
   t.history = rtaoHistory;
   t.withoutHistory = rtaoWithoutAccumulation;

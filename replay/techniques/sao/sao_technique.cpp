@@ -5,21 +5,36 @@
 #include "shared_passes/shared_passes.h"
 #include "capture/capture.h"
 #include "core/input_error.h"
+#include "technique_api/key_table.h"
 #include "techniques/registry.h"
 #include "techniques/sao/sao_settings.h"
 
 namespace aor {
 namespace {
 
-constexpr const char* kBias = "bias";
-constexpr const char* kIntensity = "intensity";
 constexpr const char* kSamples = "samples";
 constexpr const char* kSpiralTurns = "spiral_turns";
-constexpr const char* kBlurRadius = "blur_radius";
-constexpr const char* kBlurStep = "blur_step";
-constexpr const char* kEdgeSharpness = "edge_sharpness";
-constexpr const char* kCsz32 = "csz32";
 constexpr const char* kDualLayer = "dual_layer";
+
+// Every key with its SaoSettings field; defaults are the struct's.
+const KeyTable<SaoSettings>& keyTable() {
+  using S = SaoSettings;
+  static const KeyTable<S> table = {
+      radiusKey(&S::radius),
+      floatKey(&S::bias, "bias", 0, 1, "beta: obscurance bias along the normal, world units", kTunable),
+      floatKey(&S::intensity, "intensity", 0, 16, "sigma: obscurance intensity", kTunable),
+      intKey(&S::samples, kSamples, 1, int(kSaoSpiralTurnsTable.size()), "taps per pixel"),
+      intKey(&S::spiralTurns, kSpiralTurns, 1, 99, "tau: turns of the tap spiral (presets: the paper's table)"),
+      intKey(&S::blurRadius, "blur_radius", 0, 16, "bilateral blur taps on each side of each leg, 0 = no blur"),
+      intKey(&S::blurStep, "blur_step", 1, 8, "pixels between blur taps"),
+      floatKey(&S::edgeSharpness, "edge_sharpness", 0, 100, "blur's depth edge sharpness, 0 = plain Gaussian", kTunable),
+      boolKey(&S::csz32, "csz32", "camera-space Z as R32F instead of R16F"),
+      enumKey(&S::dualLayer, kDualLayer, {"0", "1", "auto"},
+              "second depth layer: 0 off, 1 on (the capture must have depth2), auto when it has one"),
+      bindKey(&S::temporal, shared_passes::temporalParameter(0)),
+  };
+  return table;
+}
 
 void addSaoPipeline(FrameBuilder& frame, const Settings& settings) {
   SaoSettings s = saoSettings(settings);
@@ -58,21 +73,7 @@ Technique makeSao() {
   t.seed = "004 deep G-buffer AO (SAO with a second depth layer)";
   t.summary = "Scalable Ambient Obscurance on a camera-space Z pyramid, both depth layers where the capture has two, "
               "separable bilateral blur";
-  Parameter dual = enumParameter(kDualLayer, {"0", "1", "auto"}, int(SaoDualLayer::Auto),
-                                 "second depth layer: 0 off, 1 on (the capture must have depth2), auto when it has one");
-  t.parameters = {
-      radiusParameter(0.75),
-      floatParameter(kBias, 0.023, 0, 1, "beta: obscurance bias along the normal, world units", true),
-      floatParameter(kIntensity, 1, 0, 16, "sigma: obscurance intensity", true),
-      intParameter(kSamples, 19, 1, int(kSaoSpiralTurnsTable.size()), "taps per pixel"),
-      intParameter(kSpiralTurns, saoSpiralTurnsFor(19), 1, 99, "tau: turns of the tap spiral (presets: the paper's table)"),
-      intParameter(kBlurRadius, 4, 0, 16, "bilateral blur taps on each side of each leg, 0 = no blur"),
-      intParameter(kBlurStep, 2, 1, 8, "pixels between blur taps"),
-      floatParameter(kEdgeSharpness, 1, 0, 100, "blur's depth edge sharpness, 0 = plain Gaussian", true),
-      boolParameter(kCsz32, false, "camera-space Z as R32F instead of R16F"),
-      dual,
-      shared_passes::temporalParameter(0),
-  };
+  t.parameters = keyTable().parameters();
   t.presets = {samplesPreset("low", 9), samplesPreset("medium", 13), samplesPreset("high", 19), samplesPreset("ultra", 31)};
   t.defaultPreset = "high";
   t.inputs.depth2 = InputUse::Optional;
@@ -93,21 +94,7 @@ Technique makeSao() {
 
 }  // namespace
 
-SaoSettings saoSettings(const Settings& s) {
-  SaoSettings o;
-  o.radius = s.f(kRadiusKey);
-  o.bias = s.f(kBias);
-  o.intensity = s.f(kIntensity);
-  o.samples = s.i(kSamples);
-  o.spiralTurns = s.i(kSpiralTurns);
-  o.blurRadius = s.i(kBlurRadius);
-  o.blurStep = s.i(kBlurStep);
-  o.edgeSharpness = s.f(kEdgeSharpness);
-  o.csz32 = s.b(kCsz32);
-  o.dualLayer = SaoDualLayer(s.i(kDualLayer));
-  o.temporal = s.f(shared_passes::kTemporalKey);
-  return o;
-}
+SaoSettings saoSettings(const Settings& settings) { return keyTable().read(settings); }
 
 const Technique& saoTechnique() {
   static const Technique t = makeSao();

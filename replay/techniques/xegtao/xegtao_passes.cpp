@@ -12,8 +12,6 @@
 namespace aor {
 namespace {
 
-SpecializationValue spec(int id, int value) { return {uint32_t(id), uint32_t(value)}; }
-
 constexpr uint32_t kMipTapsBytes = shader::kXeGtaoDepthMipLevels * sizeof(uint32_t);
 
 // Levels of the depth chain: XeGTAO's five, fewer where the frame is too small for them.
@@ -41,40 +39,17 @@ graph::ResourceId addMipTapsBuffer(FrameBuilder& frame) {
 
 }  // namespace
 
-XeGtaoSettings xegtaoSettings(const Settings& s) {
-  XeGtaoSettings x;
-  x.radius = s.f(kRadiusKey);
-  x.slices = s.i("slices");
-  x.steps = s.i("steps");
-  x.radiusMultiplier = s.f("radius_multiplier");
-  x.falloffRange = s.f("falloff_range");
-  x.sampleDistributionPower = s.f("sample_distribution_power");
-  x.thinOccluderCompensation = s.f("thin_occluder_compensation");
-  x.finalValuePower = s.f("final_value_power");
-  x.depthMipSamplingOffset = s.f("depth_mip_sampling_offset");
-  x.denoisePasses = s.i("denoise_passes");
-  x.depth32 = s.b("depth32");
-  x.bent = s.b("bent");
-  x.temporal = s.f(shared_passes::kTemporalKey);
-  return x;
-}
-
 shader::XeGtaoConstants xegtaoConstants(const FrameCamera& camera, const XeGtaoSettings& settings) {
   auto params = projectionParams(camera.projection, camera.width, camera.height);
   shader::XeGtaoConstants c{};
   c.viewportSize = {camera.width, camera.height};
   c.viewportPixelSize = {1.0f / float(camera.width), 1.0f / float(camera.height)};
-  // This tool's distance = P32 / (d + P22) is XeGTAO's z = mul / (add - d) with mul = -P32, add = -P22
-  // (derived here, so XeGTAO's handedness fix-up of the two is not needed).
-  c.depthUnpackConsts = {-params.projection32, -params.projection22};
-  c.cameraTanHalfFov = glm::abs(params.ndcToViewMul);
-  // view.xy = dist * (ndc * mul + add) with ndc = 2 uv - 1; XeGTAO's axes point right and up with
-  // uv's origin at the top left, so mul.x > 0 and mul.y < 0 there: flip an axis that points the
-  // other way.
-  glm::vec2 signs{params.ndcToViewMul.x >= 0.0f ? 1.0f : -1.0f, params.ndcToViewMul.y >= 0.0f ? -1.0f : 1.0f};
-  c.viewAxisSigns = signs;
-  c.ndcToViewMul = 2.0f * params.ndcToViewMul * signs;
-  c.ndcToViewAdd = (params.ndcToViewAdd - params.ndcToViewMul) * signs;
+  ForwardViewCamera forward = forwardViewCamera(params);  // XeGTAO's view space and uv
+  c.depthUnpackConsts = forward.depthUnpack;
+  c.cameraTanHalfFov = forward.tanHalfFov;
+  c.viewAxisSigns = forward.axisSigns;
+  c.ndcToViewMul = forward.ndcToViewMul;
+  c.ndcToViewAdd = forward.ndcToViewAdd;
   c.ndcToViewMulXPixelSize = c.ndcToViewMul * c.viewportPixelSize;
   c.effectRadius = settings.radius;
   c.effectFalloffRange = settings.falloffRange;
@@ -122,9 +97,9 @@ XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& setti
   bool countTaps = frame.wantsDebugView("mip_taps");
   graph::ResourceId taps = countTaps ? addMipTapsBuffer(frame) : graph::kNoResource;
   std::vector<SpecializationValue> specialization{
-      spec(shader::kXeGtaoSpecSlices, settings.slices), spec(shader::kXeGtaoSpecSteps, settings.steps),
-      spec(shader::kXeGtaoSpecBent, settings.bent), spec(shader::kXeGtaoSpecThin, settings.thinOccluderCompensation > 0.0f),
-      spec(shader::kXeGtaoSpecDepth32, settings.depth32),
+      specializationValue(shader::kXeGtaoSpecSlices, settings.slices), specializationValue(shader::kXeGtaoSpecSteps, settings.steps),
+      specializationValue(shader::kXeGtaoSpecBent, settings.bent), specializationValue(shader::kXeGtaoSpecThin, settings.thinOccluderCompensation > 0.0f),
+      specializationValue(shader::kXeGtaoSpecDepth32, settings.depth32),
       {uint32_t(shader::kXeGtaoSpecSampleDistributionPower), std::bit_cast<uint32_t>(settings.sampleDistributionPower)}};
   auto normals = frame.viewNormals();
   auto& pipelines = frame.pipelines();
@@ -157,7 +132,7 @@ graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& se
   glm::uvec2 size = frame.size();
   auto& g = frame.graph();
   auto constants = xegtaoConstants(frame.camera(), settings);
-  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecBent, settings.bent)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kXeGtaoSpecBent, settings.bent)};
   auto& pipelines = frame.pipelines();
   graph::ResourceId source = working.aoTerm;
   int passes = std::max(1, settings.denoisePasses);
@@ -189,8 +164,8 @@ void addXeGtaoSky(FrameBuilder& frame, const XeGtaoSettings& settings, graph::Re
   glm::uvec2 size = frame.size();
   auto constants = xegtaoConstants(frame.camera(), settings);
   auto params = projectionParams(frame.camera().projection, frame.camera().width, frame.camera().height);
-  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecBent, settings.bent),
-                                                  spec(shader::kXeGtaoSpecReversedDepth, params.reversedDepth)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kXeGtaoSpecBent, settings.bent),
+                                                  specializationValue(shader::kXeGtaoSpecReversedDepth, params.reversedDepth)};
   auto depth = frame.depth();
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
@@ -210,7 +185,7 @@ graph::ResourceId addXeGtaoScreenRadius(FrameBuilder& frame, const XeGtaoSetting
   glm::uvec2 size = frame.size();
   auto radius = frame.graph().createImage("screen_radius", {size.x, size.y, VK_FORMAT_R32_SFLOAT});
   auto constants = xegtaoConstants(frame.camera(), settings);
-  std::vector<SpecializationValue> specialization{spec(shader::kXeGtaoSpecDepth32, settings.depth32)};
+  std::vector<SpecializationValue> specialization{specializationValue(shader::kXeGtaoSpecDepth32, settings.depth32)};
   auto& pipelines = frame.pipelines();
   frame.graph().addPass(
       "xegtao_screen_radius",

@@ -4,11 +4,39 @@
 #include <fmt/format.h>
 
 #include "shared_passes/shared_passes.h"
+#include "technique_api/key_table.h"
 #include "techniques/registry.h"
 #include "techniques/xegtao/xegtao_settings.h"
 
 namespace aor {
 namespace {
+
+// Every key with its XeGtaoSettings field, under XeGTAO's names; defaults are the struct's.
+const KeyTable<XeGtaoSettings>& keyTable() {
+  using X = XeGtaoSettings;
+  static const KeyTable<X> table = {
+      radiusKey(&X::radius),
+      intKey(&X::slices, "slices", 1, 32, "slice directions per pixel (XeGTAO's sliceCount)"),
+      intKey(&X::steps, "steps", 1, 32, "samples per side of a slice (stepsPerSlice)"),
+      floatKey(&X::radiusMultiplier, "radius_multiplier", 0.3, 3.0, "RadiusMultiplier: the radius searched is radius x this",
+               kTunable),
+      floatKey(&X::falloffRange, "falloff_range", 0.0, 1.0, "FalloffRange: fraction of the radius over which samples fade out",
+               kTunable),
+      floatKey(&X::sampleDistributionPower, "sample_distribution_power", 1.0, 3.0,
+               "SampleDistributionPower: step positions t^power, >1 crowds them towards the centre", kTunable),
+      floatKey(&X::thinOccluderCompensation, "thin_occluder_compensation", 0.0, 0.7,
+               "ThinOccluderCompensation: samples behind the centre fade sooner, 0 = off", kTunable),
+      floatKey(&X::finalValuePower, "final_value_power", 0.5, 5.0, "FinalValuePower: exponent on the averaged visibility",
+               kTunable),
+      floatKey(&X::depthMipSamplingOffset, "depth_mip_sampling_offset", 0.0, 30.0,
+               "DepthMIPSamplingOffset: MIP = log2(offset in pixels) - this", kTunable),
+      intKey(&X::denoisePasses, "denoise_passes", 1, 3, "DenoisePasses: edge-aware 3x3 passes (1 sharp, 2 medium, 3 soft)"),
+      boolKey(&X::depth32, "depth32", "R32F depth MIP chain instead of R16F (XE_GTAO_FP32_DEPTHS)"),
+      boolKey(&X::bent, "bent", "bent normals computed and written (XE_GTAO_COMPUTE_BENT_NORMALS)"),
+      bindKey(&X::temporal, shared_passes::temporalParameter(0)),
+  };
+  return table;
+}
 
 void addXeGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
   XeGtaoSettings x = xegtaoSettings(settings);
@@ -36,27 +64,7 @@ Technique makeXeGtao() {
   t.name = "xegtao";
   t.seed = "002 XeGTAO";
   t.summary = "Intel's XeGTAO: prefiltered depth MIP chain, horizon search with Hilbert/R2 noise, edge-aware denoiser";
-  t.parameters = {
-      radiusParameter(0.5),
-      intParameter("slices", 3, 1, 32, "slice directions per pixel (XeGTAO's sliceCount)"),
-      intParameter("steps", 3, 1, 32, "samples per side of a slice (stepsPerSlice)"),
-      floatParameter("radius_multiplier", shader::kXeGtaoDefaultRadiusMultiplier, 0.3, 3.0,
-                     "RadiusMultiplier: the radius searched is radius x this", true),
-      floatParameter("falloff_range", shader::kXeGtaoDefaultFalloffRange, 0.0, 1.0,
-                     "FalloffRange: fraction of the radius over which samples fade out", true),
-      floatParameter("sample_distribution_power", shader::kXeGtaoDefaultSampleDistributionPower, 1.0, 3.0,
-                     "SampleDistributionPower: step positions t^power, >1 crowds them towards the centre", true),
-      floatParameter("thin_occluder_compensation", shader::kXeGtaoDefaultThinOccluderCompensation, 0.0, 0.7,
-                     "ThinOccluderCompensation: samples behind the centre fade sooner, 0 = off", true),
-      floatParameter("final_value_power", shader::kXeGtaoDefaultFinalValuePower, 0.5, 5.0,
-                     "FinalValuePower: exponent on the averaged visibility", true),
-      floatParameter("depth_mip_sampling_offset", shader::kXeGtaoDefaultDepthMipSamplingOffset, 0.0, 30.0,
-                     "DepthMIPSamplingOffset: MIP = log2(offset in pixels) - this", true),
-      intParameter("denoise_passes", 1, 1, 3, "DenoisePasses: edge-aware 3x3 passes (1 sharp, 2 medium, 3 soft)"),
-      boolParameter("depth32", false, "R32F depth MIP chain instead of R16F (XE_GTAO_FP32_DEPTHS)"),
-      boolParameter("bent", false, "bent normals computed and written (XE_GTAO_COMPUTE_BENT_NORMALS)"),
-      shared_passes::temporalParameter(0.0),
-  };
+  t.parameters = keyTable().parameters();
   t.presets = {{"low", {{"slices", 1}, {"steps", 2}}},
                {"medium", {{"slices", 2}, {"steps", 2}}},
                {"high", {{"slices", 3}, {"steps", 3}}},
@@ -87,5 +95,7 @@ const Technique& xegtaoTechnique() {
   static const Technique t = makeXeGtao();
   return t;
 }
+
+XeGtaoSettings xegtaoSettings(const Settings& settings) { return keyTable().read(settings); }
 
 }  // namespace aor

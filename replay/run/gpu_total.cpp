@@ -1,4 +1,4 @@
-#include "report/gpu_total.h"
+#include "run/gpu_total.h"
 
 #include <stdexcept>
 

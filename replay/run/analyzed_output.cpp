@@ -1,4 +1,4 @@
-#include "replay_loop/analyzed_output.h"
+#include "run/analyzed_output.h"
 
 #include "metrics/halo_band.h"
 #include "technique_api/settings.h"
