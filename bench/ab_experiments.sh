@@ -5,8 +5,11 @@
 #   hog     the same while a CPU hog (one busy core) runs for part of the experiment: the same figures
 #   slice   --b "--set slices=4" against the default (one GTAO slice more): exit 1 in at least 19 of 20
 #   preset  --a "--preset ultra" --b "--preset high": gtao `faster`
+#   loop    bench/loop_technique (a user technique of known work), --set iterations=101 against 100:
+#           about 1 % more of its one pass; for counted cost (AB_ARGS="--cost instructions"): `slower`
 #   bash bench/ab_experiments.sh BUILD_DIR OUT_DIR [EXPERIMENTS=20] [ROUNDS=5]
-# Environment: RUN_ARGS (words added to both sides' `run` arguments, e.g. "--frames 0:2"),
+# Environment: RUN_ARGS (words added to both sides' `run` arguments, e.g. "--frames 0:2"), AB_ARGS
+# (words added to `ab` itself, e.g. "--cost instructions"),
 # KINDS (default "same hog slice preset"), CAPTURE (default captures/boxes-orbit).
 # The hog starts a quarter of the way into each hog experiment and stops after half of it (the
 # duration is estimated from the previous `same` or `hog` experiment, or from an uncounted probe
@@ -23,6 +26,8 @@ aoreplay="$build/replay/aoreplay"
 capture=${CAPTURE:-"$(dirname "$0")/../captures/boxes-orbit"}
 kinds=${KINDS:-same hog slice preset}
 run_args=${RUN_ARGS:-}
+ab_args=${AB_ARGS:-}
+loop_technique="$(cd "$(dirname "$0")" && pwd)/loop_technique/technique.json"
 mkdir -p "$out"
 
 side_args() {  # kind side -> that side's extra `run` arguments
@@ -30,6 +35,8 @@ side_args() {  # kind side -> that side's extra `run` arguments
     slice:b) echo "--set slices=4";;
     preset:a) echo "--preset ultra";;
     preset:b) echo "--preset high";;
+    loop:a) echo "--technique $loop_technique --set iterations=100";;
+    loop:b) echo "--technique $loop_technique --set iterations=101";;
     *) echo "";;
   esac
 }
@@ -58,7 +65,7 @@ for kind in $kinds; do
     hog_note=
     if [ "$kind" = hog ] && [ -z "$estimate_s" ]; then  # no `same` experiment ran first: time one, not counted
       start=$(date +%s.%N)
-      "$aoreplay" ab "$capture" --rounds "$rounds" --a "$run_args" --b "$run_args" --out "$out/probe" >"$out/probe.txt" 2>&1 || true
+      "$aoreplay" ab "$capture" --rounds "$rounds" $ab_args --a "$run_args" --b "$run_args" --out "$out/probe" >"$out/probe.txt" 2>&1 || true
       estimate_s=$(awk "BEGIN{print $(date +%s.%N) - $start}")
     fi
     if [ "$kind" = hog ]; then
@@ -69,7 +76,7 @@ for kind in $kinds; do
     fi
     start=$(date +%s.%N)
     set +e
-    "$aoreplay" ab "$capture" --rounds "$rounds" --a "$run_args $(side_args "$kind" a)" \
+    "$aoreplay" ab "$capture" --rounds "$rounds" $ab_args --a "$run_args $(side_args "$kind" a)" \
       --b "$run_args $(side_args "$kind" b)" --out "$dir" >"$dir.txt" 2>&1
     rc=$?
     set -e
@@ -81,7 +88,7 @@ for kind in $kinds; do
   done
 done
 
-python3 - "$out" "$experiments" "$rounds" "$run_args" $kinds <<'PY'
+python3 - "$out" "$experiments" "$rounds" "$run_args $ab_args" $kinds <<'PY'
 import json, os, sys
 out, experiments, rounds, run_args, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4], sys.argv[5:]
 targets = {
@@ -89,6 +96,7 @@ targets = {
     "hog": "exit 0 in >= 19 of 20; every judged name `same` in >= 18 of 20",
     "slice": "exit 1 in >= 19 of 20",
     "preset": "gtao `faster` (ultra against high)",
+    "loop": "loop `slower` (iterations 101 against 100, counted cost)",
 }
 summary, lines = {}, []
 lines.append(f"ab experiments: {experiments} per kind, {rounds} rounds each ({2 * rounds} runs a side, ABBA), "
@@ -106,14 +114,17 @@ for kind in kinds:
         judged = [p for p in c["passes"] if p["judged"]]
         all_same += all(p["verdict"] == "same" for p in judged)
         for p in c["passes"]:
-            if p["name"] == "gtao": gtao[p["verdict"]] = gtao.get(p["verdict"], 0) + 1
+            if p["name"] in ("gtao", "loop"): gtao[p["verdict"]] = gtao.get(p["verdict"], 0) + 1
             if p["name"] == "total": total[p["verdict"]] = total.get(p["verdict"], 0) + 1
-        more += [f"{p['name']} {p['verdict']} x{p['ratio']:.3f}" for p in judged if p["verdict"] != "same"]
+        more += [f"{p['name']} {p['verdict']} x{p['ratio']:.5f}" for p in judged if p["verdict"] != "same"]
+        if kind in ("loop", "slice"):
+            same_names = sorted(p["name"] for p in c["passes"] if p["verdict"] == "same")
+            more.append(f"[{name}] same: {', '.join(same_names) or '-'}")
     summary[kind] = {"experiments": experiments, "exit_codes": {str(k): v for k, v in sorted(exits.items())},
                      "every_judged_name_same": all_same, "gtao_verdicts": gtao, "total_verdicts": total,
                      "not_same": more, "target": targets.get(kind, "")}
     lines.append(f"{kind}: exit codes {dict(sorted(exits.items()))}; every judged name same in {all_same}/{experiments}; "
-                 f"gtao {gtao}; total {total}  (target for 20: {targets.get(kind, '-')})")
+                 f"{'loop' if kind == 'loop' else 'gtao'} {gtao}; total {total}  (target for 20: {targets.get(kind, '-')})")
     if more:
         lines.append(f"  not same: {'; '.join(more)}")
 text = "\n".join(lines) + "\n"

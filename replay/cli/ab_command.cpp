@@ -34,6 +34,7 @@ struct AbArgs {
   std::string aArgs, bArgs;      // `aoreplay run` arguments of each side, split as the shell would
   std::string out;
   int runTimeout = 3600;  // seconds a run may take
+  std::string cost = "time";  // passed to every run as --cost
   CompareFlags flags;
 };
 
@@ -59,9 +60,12 @@ std::vector<std::string> splitWords(const std::string& text, const std::string& 
   }
   std::vector<std::string> out(words.we_wordv, words.we_wordv + words.we_wordc);
   wordfree(&words);
-  for (const auto& word : out)
+  for (const auto& word : out) {
     if (word == "--out" || word.starts_with("--out="))
       throw InputError("", std::nullopt, flag, "sets --out; ab chooses every run's output folder (DIR/a/NN, DIR/b/NN)");
+    if (word == "--cost" || word.starts_with("--cost="))
+      throw InputError("", std::nullopt, flag, "sets --cost; ab's own --cost applies to both sides (one measure a comparison)");
+  }
   return out;
 }
 
@@ -83,10 +87,11 @@ std::string lastLines(const fs::path& file, size_t count) {
 }
 
 // The run's total for the progress line, when its report says it.
-std::string totalOf(const fs::path& report) {
+std::string totalOf(const fs::path& report, const std::string& cost) {
   try {
     std::ifstream in(report);
     auto json = nlohmann::json::parse(in);
+    if (cost != "time") return fmt::format(", total {:.0f} {}", json.at(cost + "_total").get<double>(), cost);
     return fmt::format(", total {:.3f} ms", json.at("gpu_ms_total_median").get<double>());
   } catch (const std::exception&) {
     return "";
@@ -118,6 +123,7 @@ int abCommand(const AbArgs& args) {
     std::vector<std::string> argv{side.binary, "run", args.capture};
     argv.insert(argv.end(), side.args.begin(), side.args.end());
     argv.insert(argv.end(), {"--out", runOut.string()});
+    if (args.cost != "time") argv.insert(argv.end(), {"--cost", args.cost});  // binaries older than --cost take time runs
     fmt::print(stderr, "ab: run {}/{} (round {}/{}): {} ...", i + 1, order.size(), i / 4 + 1, args.rounds, name);
     std::fflush(stderr);
     auto start = std::chrono::steady_clock::now();
@@ -136,7 +142,7 @@ int abCommand(const AbArgs& args) {
                  lastLines(log, 20));
       return status == kExitBadInput || status == kExitNoDevice ? status : kExitFailed;
     }
-    fmt::print(stderr, " {:.1f} s{}\n", seconds, totalOf(runOut / "report.json"));
+    fmt::print(stderr, " {:.1f} s{}\n", seconds, totalOf(runOut / "report.json", args.cost));
     runs.push_back({{"order", i + 1}, {"side", std::string(1, side.label)}, {"out", name}, {"wall_s", seconds}});
   }
   auto side = [&](char label) {
@@ -149,6 +155,7 @@ int abCommand(const AbArgs& args) {
   writeFileAtomically(out.staging() / "compare.json", comparisonJson(comparison, args.flags.options).dump(2) + "\n");
   writeFileAtomically(out.staging() / "compare.html", html::comparePageHtml(comparison, args.flags.options));
   nlohmann::json record{{"tool", "aoreplay ab"}, {"capture", args.capture}, {"rounds", args.rounds}, {"order", "ABBA"},
+                        {"cost", args.cost},
                         {"a", {{"binary", sides[0].binary}, {"args", sides[0].args}}},
                         {"b", {{"binary", sides[1].binary}, {"args", sides[1].args}}},
                         {"runs", runs}, {"exit_status", status}};
@@ -174,6 +181,11 @@ void registerAbCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-ab/)");
   cmd->add_option("--run-timeout", args->runTimeout, "seconds one run may take; a run past it is killed and ab fails")
       ->check(wholeIn(1, 604800))
+      ->capture_default_str();
+  cmd->add_option("--cost", args->cost,
+                  "time, or instructions or cycles: every run counted under callgrind on lavapipe (run --cost), "
+                  "judged exactly; one round then suffices")
+      ->check(CLI::IsMember({"time", "instructions", "cycles"}))
       ->capture_default_str();
   addCompareFlags(*cmd, args->flags);
   handlers()["ab"] = [args] { return abCommand(*args); };

@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
+#include "report/compare_counts.h"
 #include "report/html/compare_page.h"
 #include "report/junit.h"
 #include "core/output_directory.h"
@@ -48,20 +49,28 @@ void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
   cmd.add_option("--json", flags.json, "also write the verdicts as JSON to this file (- for standard output)");
   cmd.add_option("--junit", flags.junit, "also write the verdicts as JUnit XML to this file (one test case per name)");
   cmd.add_option("--ignore", flags.ignore, "skip names matching this regular expression (repeatable)");
+  auto timeOnly = [&flags](const char* name) {
+    return [&flags, name](const std::string&) { flags.timeOnlyGiven.push_back(name); };
+  };
   cmd.add_option("--alpha", flags.options.alpha, "false-alarm rate over all judged names (Holm)")
       ->check(numberIn(1e-9, 0.5))
+      ->each(timeOnly("--alpha"))
       ->capture_default_str();
-  cmd.add_option("--min-effect", flags.options.minEffect, "smallest median change that counts, as a ratio either way")
+  cmd.add_option("--min-effect", flags.options.minEffect,
+                 "smallest median change that counts, as a ratio either way (counted cost: default 0.001)")
       ->check(numberIn(0.0, 10.0))
+      ->each([&flags](const std::string& value) { flags.options.minEffectCounts = std::stod(value); })
       ->capture_default_str();
   cmd.add_option("--min-effect-ms", flags.options.minEffectMs,
                  "smallest absolute median change that counts, in milliseconds")
       ->check(numberIn(0.0, 1e6))
+      ->each(timeOnly("--min-effect-ms"))
       ->capture_default_str();
   cmd.add_option("--spread-multiple", flags.options.spreadMultiple,
                  "spreads (robust, of log values) of the noisier side a change must exceed: to count at all with "
                  "within-run samples, to be unknown rather than same with runs")
       ->check(numberIn(0.0, 100.0))
+      ->each(timeOnly("--spread-multiple"))
       ->capture_default_str();
   cmd.add_flag("--judge-host-copies", flags.options.judgeHostCopies,
                "let the upload and read-back copies fail the comparison too (by default they are shown, not judged)");
@@ -71,6 +80,11 @@ void addCompareFlags(CLI::App& cmd, CompareFlags& flags) {
 
 Comparison judgeSides(SideTimings baseline, SideTimings candidate, const CompareFlags& flags) {
   std::string baselineSource = baseline.source, newSource = candidate.source;
+  if (const std::string measure = commonMeasure(baseline, candidate); measure != "time" && !flags.timeOnlyGiven.empty())
+    throw InputError("", std::nullopt, flags.timeOnlyGiven.front(),
+                     fmt::format("{} is for timed runs; these runs count {}, which are exact and judged without "
+                                 "statistics (only --min-effect applies)",
+                                 flags.timeOnlyGiven.front(), measure));
   auto comparison = compareTimings(withoutIgnored(std::move(baseline), flags.ignore),
                                    withoutIgnored(std::move(candidate), flags.ignore), flags.options);
   if (comparison.passes.empty())
@@ -80,7 +94,7 @@ Comparison judgeSides(SideTimings baseline, SideTimings candidate, const Compare
 
 int reportComparison(const Comparison& comparison, const CompareFlags& flags, const std::vector<std::filesystem::path>& inputs) {
   // With --json - the verdicts go to standard output, so the table goes to standard error.
-  fmt::print(flags.json == "-" ? stderr : stdout, "{}", comparisonTable(comparison));
+  fmt::print(flags.json == "-" ? stderr : stdout, "{}", comparisonTable(comparison, flags.options));
   if (!flags.json.empty()) writeFileAtomically(flags.json, comparisonJson(comparison, flags.options).dump(2) + "\n", inputs);
   if (!flags.junit.empty())
     writeFileAtomically(flags.junit, junitXml("aoreplay compare", comparisonCases(comparison, flags.options)), inputs);

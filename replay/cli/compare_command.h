@@ -16,6 +16,7 @@ struct CompareFlags {
   std::string junit;                // --junit FILE: one JUnit test case per compared name
   std::vector<std::string> ignore;  // --ignore REGEX...
   CompareOptions options;
+  std::vector<std::string> timeOnlyGiven;  // time-only options given (--alpha, ...): refused with counts
 };
 
 // --json, --junit, --ignore, --alpha, --min-effect, --min-effect-ms, --spread-multiple, --judge-host-copies,

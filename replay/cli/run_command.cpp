@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.h"
+#include "cli/cost_launcher.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
 #include "options/progress.h"
@@ -44,6 +45,7 @@ struct RunArgs {
   CameraJumpLimits cameraJump;
   std::string expect;  // thresholds file (report/expectations.h)
   std::string junit;   // JUnit XML of the --expect checks
+  CostMeasure cost = CostMeasure::Time;
 };
 
 // The frames report.html shows, and the previous frame of each (for flicker), kept as they pass.
@@ -75,10 +77,40 @@ class ShownFrames {
   std::vector<html::FrameImages> frames_;
 };
 
-int runCommand(const RunArgs& args) {
-  Capture capture = loadCapture(args.capture);
-  std::vector<Threshold> expectations;
-  if (!args.expect.empty()) expectations = loadExpectations(args.expect);
+// Counted cost inside callgrind: one counted run a frame after a warm-up, nothing of the tool's
+// running meanwhile (isolated timing); options that make no sense with counts are refused.
+void prepareCountedRun(const RunArgs& args, ReplayOptions& options) {
+  const char* measure = costMeasureName(args.cost);
+  if (args.repeat != 1)
+    throw InputError("", std::nullopt, "--repeat",
+                     fmt::format("--cost {} counts one run a frame (counts do not vary): --repeat must be 1", measure));
+  if (args.overlap)
+    throw InputError("", std::nullopt, "--overlap",
+                     fmt::format("--cost {} counts the device's thread while the tool waits: its workers must not run "
+                                 "meanwhile, so --overlap is refused",
+                                 measure));
+  if (args.validate)
+    throw InputError("", std::nullopt, "--validate",
+                     fmt::format("--cost {}: validate with a timed run (the validation layer under valgrind takes "
+                                 "minutes a frame, and its messages do not depend on the measure)",
+                                 measure));
+  const char* dumps = std::getenv(kCostDumpsVariable);
+  if (!dumps || !*dumps) throw std::runtime_error(std::string(kCostDumpsVariable) + " is not set under callgrind");
+  options.cost = args.cost;
+  options.costDumps = dumps;
+  options.timingMode = TimingMode::Isolated;
+  options.warmup = std::max(args.warmup, 1);
+}
+
+// Counts are lavapipe's work on this CPU; another device's work is not on it.
+void requireLavapipe(const DeviceInfo& device, CostMeasure cost) {
+  if (!device.isLavapipe)
+    throw InputError("", std::nullopt, "--device",
+                     fmt::format("--cost {} counts lavapipe's work on this CPU; device '{}' ({}) is not lavapipe",
+                                 costMeasureName(cost), device.name, device.driver));
+}
+
+ReplayOptions replayOptionsOf(const RunArgs& args, const Capture& capture) {
   ReplayOptions options(args.settings.resolve(capture));
   std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
   options.debugViews = {args.settings.debugViews.begin(), args.settings.debugViews.end()};
@@ -90,36 +122,35 @@ int runCommand(const RunArgs& args) {
   options.keepHistoryOnCut = args.keepHistoryOnCut;
   options.cameraJump = args.cameraJump;
   options.progress = progressCallback("replay", "frames");
-  std::vector<fs::path> inputs = {capture.folder};
-  if (!args.expect.empty()) inputs.emplace_back(args.expect);
-  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), ResultKind::Run, inputs);
+  if (args.cost != CostMeasure::Time) prepareCountedRun(args, options);
+  return options;
+}
 
-  std::optional<RunResults> run;
-  ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
+struct Replayed {
+  RunResults run;
+  std::vector<html::FrameImages> shown;
   size_t validationMessages = 0;
-  {
-    ContextScope context({args.device, args.validate, optionalExtensionsOf({options.settings})});
-    run = runCapture(context.vk, capture, RunRequest(options), [&](const FrameOutput& frame) {
-      if (!args.noImages) writeFrameImages(out.staging(), frame);
-      for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);
-      shown.keep(capture, frame);
-    });
-    destroyContext(context.vk);  // waits for the device; the last validation messages arrive here
-    validationMessages = context.vk.validationMessageCount();
-  }
-  const ReplayResult& result = run->replay;
-  auto report = buildReport(capture, options, *run);
-  report["validation"] = {{"enabled", args.validate}, {"messages", validationMessages}};
-  writeJson(out.staging() / "report.json", report);
-  writeJson(out.staging() / "trace.json", buildTrace(result));
-  writeTemporalPlots(out.staging(), report, result.noHistoryReason);
-  std::vector<std::string> summary = {errorLine(report), temporalLine(report)};
-  writeText(out.staging() / "report.html", html::runPageHtml({report, shown.take(), result.graph, summary, result.noHistoryReason}));
+};
 
+Replayed replay(const RunArgs& args, const Capture& capture, const ReplayOptions& options, const OutputDirectory& out) {
+  ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
+  ContextScope context({args.device, args.validate, optionalExtensionsOf({options.settings})});
+  if (args.cost != CostMeasure::Time) requireLavapipe(context.vk.info, args.cost);
+  RunResults run = runCapture(context.vk, capture, RunRequest(options), [&](const FrameOutput& frame) {
+    if (!args.noImages) writeFrameImages(out.staging(), frame);
+    for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);
+    shown.keep(capture, frame);
+  });
+  destroyContext(context.vk);  // waits for the device; the last validation messages arrive here
+  return {std::move(run), shown.take(), context.vk.validationMessageCount()};
+}
+
+void printRun(const Capture& capture, const ReplayOptions& options, const ReplayResult& result, const nlohmann::json& report,
+              const std::vector<std::string>& summary) {
   fmt::print("device: {} ({})\n", result.device.name, result.device.driver);
   fmt::print("capture: {} ({}x{}, frames {}:{}), settings: {}\n", capture.name, capture.width, capture.height,
              options.frameBegin, options.frameEnd, options.settings.toJson().dump());
-  fmt::print("{}", passTable(result));
+  fmt::print("{}", options.cost == CostMeasure::Time ? passTable(result) : countedPassTable(result, options.cost));
   for (const auto& c : result.culled) fmt::print("culled: {} ({})\n", c.name, c.reason);
   for (const auto& line : summary) fmt::print("{}\n", line);
   HostOverhead overhead = hostOverhead(result);
@@ -129,16 +160,11 @@ int runCommand(const RunArgs& args) {
              result.wallMs, result.frames.size(), report["replay_fps"].get<double>(), overhead.ms,
              100.0 * overhead.fractionOfWall, timingModeName(result.timingMode),
              result.timingMode == TimingMode::Isolated ? fmt::format(" ({} frame(s) a chunk)", result.chunkFrames) : "");
-  if (args.validate && validationMessages > 0) {
-    fmt::print(stderr, "aoreplay: {} validation message(s); the run failed and wrote no results\n", validationMessages);
-    return kExitFailed;
-  }
-  // Before the commit: a threshold naming a metric the report lacks is bad input and leaves nothing.
-  auto failures = checkExpectations(expectations, report, args.expect);
-  std::string written = outputListing(out.staging());
-  out.commit();
-  if (args.validate) fmt::print("validation: 0 messages (synchronization validation on)\n");
-  fmt::print("outputs: {}/ ({}{})\n", out.finalPath().string(), written, args.noImages ? "; frame images skipped by --no-images" : "");
+}
+
+// After the commit: --junit's file and the expectations' verdict.
+int reportExpectations(const RunArgs& args, const std::vector<Threshold>& expectations,
+                       const std::vector<ExpectationFailure>& failures, const std::vector<fs::path>& inputs) {
   if (!args.junit.empty()) {
     auto cases = expectationCases(expectations, failures);
     writeFileAtomically(args.junit, junitXml("aoreplay run --expect " + args.expect, cases), inputs);
@@ -152,6 +178,40 @@ int runCommand(const RunArgs& args) {
   fmt::print(stderr, "aoreplay: {} expectation(s) from {} not met:\n", failures.size(), args.expect);
   for (const auto& f : failures) fmt::print(stderr, "  {}\n", f.describe());
   return kExitFailed;
+}
+
+int runCommand(const RunArgs& args) {
+  if (args.cost != CostMeasure::Time && !CallgrindCounter::underCallgrind()) return runUnderCallgrind(args.cost);
+  Capture capture = loadCapture(args.capture);
+  std::vector<Threshold> expectations;
+  if (!args.expect.empty()) expectations = loadExpectations(args.expect);
+  ReplayOptions options = replayOptionsOf(args, capture);
+  std::vector<fs::path> inputs = {capture.folder};
+  if (!args.expect.empty()) inputs.emplace_back(args.expect);
+  OutputDirectory out(args.out.empty() ? fs::path("out") / capture.name : fs::path(args.out), ResultKind::Run, inputs);
+
+  Replayed replayed = replay(args, capture, options, out);
+  const ReplayResult& result = replayed.run.replay;
+  auto report = buildReport(capture, options, replayed.run);
+  report["validation"] = {{"enabled", args.validate}, {"messages", replayed.validationMessages}};
+  writeJson(out.staging() / "report.json", report);
+  writeJson(out.staging() / "trace.json", buildTrace(result));
+  writeTemporalPlots(out.staging(), report, result.noHistoryReason);
+  std::vector<std::string> summary = {errorLine(report), temporalLine(report)};
+  writeText(out.staging() / "report.html",
+            html::runPageHtml({report, std::move(replayed.shown), result.graph, summary, result.noHistoryReason}));
+  printRun(capture, options, result, report, summary);
+  if (args.validate && replayed.validationMessages > 0) {
+    fmt::print(stderr, "aoreplay: {} validation message(s); the run failed and wrote no results\n", replayed.validationMessages);
+    return kExitFailed;
+  }
+  // Before the commit: a threshold naming a metric the report lacks is bad input and leaves nothing.
+  auto failures = checkExpectations(expectations, report, args.expect);
+  std::string written = outputListing(out.staging());
+  out.commit();
+  if (args.validate) fmt::print("validation: 0 messages (synchronization validation on)\n");
+  fmt::print("outputs: {}/ ({}{})\n", out.finalPath().string(), written, args.noImages ? "; frame images skipped by --no-images" : "");
+  return reportExpectations(args, expectations, failures, inputs);
 }
 
 }  // namespace
@@ -191,6 +251,12 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
                   "reset history when the camera moves more than this fraction of the median view distance (0 = off)")
       ->check(numberIn(0.0, 1e12))
       ->capture_default_str();
+  cmd->add_option("--cost", args->cost,
+                  "time: GPU timestamps; instructions or cycles: each pass's work counted under valgrind's callgrind "
+                  "on lavapipe (exact, 20-100x slower; cycles from its cache simulation)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, CostMeasure>{
+          {"time", CostMeasure::Time}, {"instructions", CostMeasure::Instructions}, {"cycles", CostMeasure::Cycles}}))
+      ->default_str("time");
   cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
                 "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")
       ->group("");

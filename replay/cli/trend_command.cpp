@@ -63,8 +63,10 @@ void registerTrendCommand(CLI::App& app) {
       ->check(wholeIn(2, 50));
   cmd->add_option("--alpha", args->options.alpha, "false-alarm rate per series over the boundaries scanned (default 0.05)")
       ->check(numberIn(1e-9, 0.5));
-  cmd->add_option("--min-effect", args->options.minEffect, "smallest shift that counts, as a ratio either way (default 0.02)")
-      ->check(numberIn(0.0, 10.0));
+  cmd->add_option("--min-effect", args->options.minEffect,
+                  "smallest shift that counts, as a ratio either way (default 0.02; counted series: 0.001)")
+      ->check(numberIn(0.0, 10.0))
+      ->each([options = &args->options](const std::string& value) { options->minEffectCounts = std::stod(value); });
   cmd->add_option("--junit", args->junit, "also write JUnit XML (a test case per series and pass; a new slowdown fails)");
   cmd->add_option("--json", args->json, "also write the change points as JSON (- for standard output)");
   cmd->add_option("--plot", args->plot, "write a plot per series into this folder (FINGERPRINT12.svg)");

@@ -16,6 +16,7 @@
 #include <functional>
 #include <mutex>
 #include <set>
+#include <atomic>
 #include <thread>
 
 #include <fmt/format.h>
@@ -582,6 +583,12 @@ ScratchFolder::~ScratchFolder() {
 
 // ---- termination ------------------------------------------------------------------------------------
 
+namespace {
+std::atomic<int> gForwardTo{0};
+}  // namespace
+
+void forwardTerminationSignalsTo(int pid) { gForwardTo = pid; }
+
 void cleanUpOutputsOnTermination() {
   static sigset_t signals;
   sigemptyset(&signals);
@@ -590,7 +597,11 @@ void cleanUpOutputsOnTermination() {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   std::thread([] {
     int received = 0;
-    while (sigwait(&signals, &received) != 0) {
+    // While a child does the work (forwardTerminationSignalsTo), its signals are passed on and the
+    // child, which holds the outputs, decides; this process ends when it does.
+    while (sigwait(&signals, &received) != 0 || gForwardTo > 0) {
+      if (gForwardTo > 0 && received != 0) ::kill(gForwardTo, received);
+      received = 0;
     }
     {
       std::lock_guard<std::mutex> guard(outputsMutex());

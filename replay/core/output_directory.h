@@ -94,5 +94,9 @@ class ScratchFolder {
 // in progress and the scratch folders (a commit under way finishes first) and then ends the process
 // by the same signal.
 void cleanUpOutputsOnTermination();
+// While `pid` (> 0) does the command's work in a child process that holds the outputs (counted
+// cost's valgrind child), those signals are passed on to it instead, and this process goes on
+// until it has waited for the child; 0 ends the forwarding.
+void forwardTerminationSignalsTo(int pid);
 
 }  // namespace aor

@@ -21,9 +21,12 @@ namespace {
 [[noreturn]] void execChild(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
                             const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
                             int errorPipe) {
-  const int out = ::open(stdoutFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  auto openOutput = [](const std::filesystem::path& file) {
+    return file.empty() ? -1 : ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  };
+  const int out = openOutput(stdoutFile);
   // One file for both: shared, so neither overwrites the other.
-  const int err = stderrFile == stdoutFile ? out : ::open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int err = stderrFile == stdoutFile ? out : openOutput(stderrFile);
   const int in = ::open("/dev/null", O_RDONLY);
   if (out >= 0) ::dup2(out, STDOUT_FILENO);
   if (err >= 0) ::dup2(err, STDERR_FILENO);

@@ -20,7 +20,7 @@ struct ProcessResult {
 
 // `argv[0]` is looked up on PATH when it has no slash. `environment` adds to (or replaces in) the
 // current environment. stdout and stderr go to the two files (one file when they are the same
-// path). Past `timeLimit` the child is killed (SIGKILL) and `timedOut` set.
+// path; an empty path: aoreplay's own). Past `timeLimit` the child is killed (SIGKILL) and `timedOut` set.
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::map<std::string, std::string>& environment,
                          const std::filesystem::path& stdoutFile, const std::filesystem::path& stderrFile,
                          std::chrono::seconds timeLimit);

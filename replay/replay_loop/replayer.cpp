@@ -169,38 +169,69 @@ struct BuiltFrameRuns {
   graph::GraphSnapshot graph;
 };
 
-// Executes the frame's graph `warmup + repeat` times (only the last `repeat` are timed). The graph
-// is rebuilt per run: each run starts from the image states the previous one left.
+// The culled passes with their reasons and the graph as compiled, for the report.
+void describeRun(const BuiltFrame& builtFrame, const graph::CompiledGraph& compiled, BuiltFrameRuns& runs) {
+  for (const auto& c : compiled.culled) {
+    const auto& name = builtFrame.graph.passes()[c.pass].name;
+    auto note = builtFrame.notes.find(name);
+    runs.culled.push_back({name, note == builtFrame.notes.end() ? c.reason : note->second + "; " + c.reason});
+  }
+  runs.graph = graph::snapshotOf(builtFrame.graph, compiled);
+}
+
+// One run of a frame's graph: timed (a timestamp pair per pass), or with a counter each pass
+// submitted alone and counted.
+struct RunOfFrame {
+  graph::CompiledGraph compiled;
+  std::vector<GraphExecutor::PassTime> times;
+  std::vector<EventCounts> counts;
+};
+
+// `start`: when building the frame's graph began; building, compiling and recording add to
+// recordMs, submission to the fence (or the counted submissions) to gpuMs.
+RunOfFrame runOnce(const BuiltFrame& builtFrame, PhysicalResources& resources, GraphExecutor& executor,
+                   CallgrindCounter* counter, Clock::time_point start, BuiltFrameRuns& runs) {
+  RunOfFrame run;
+  run.compiled = counter ? builtFrame.graph.compile() : compileAndRecord(builtFrame.graph, resources, executor);
+  auto recorded = Clock::now();
+  runs.recordMs += msBetween(start, recorded);
+  if (counter)
+    run.counts = executor.countPasses(builtFrame.graph, run.compiled, resources.prepare(builtFrame.graph, run.compiled), *counter);
+  else
+    run.times = executor.submitAndWait();
+  runs.gpuMs += msSince(recorded);
+  resources.keepFinalStates(builtFrame.graph, run.compiled);
+  return run;
+}
+
+void keepMeasures(const BuiltFrame& builtFrame, RunOfFrame& run, BuiltFrameRuns& runs) {
+  if (runs.passes.empty())
+    for (const auto& p : run.compiled.passes) runs.passes.push_back({builtFrame.graph.passes()[p.pass].name, 0, {}, {}});
+  for (size_t i = 0; i < run.times.size(); ++i) {
+    runs.passes[i].startMs = run.times[i].startMs;
+    runs.passes[i].durationsMs.push_back(run.times[i].durationMs);
+  }
+  for (size_t i = 0; i < run.counts.size(); ++i) runs.passes[i].counts = std::move(run.counts[i]);
+  runs.debug = builtFrame.debug;
+  runs.values = builtFrame.values;
+  runs.outputFormat = builtFrame.outputFormat;
+  runs.outputLayout = builtFrame.outputLayout;
+}
+
+// Executes the frame's graph `warmup + repeat` times (only the last `repeat` are timed; with a
+// counter, the run after the warm-up is counted instead). The graph is rebuilt per run: each run
+// starts from the image states the previous one left.
 BuiltFrameRuns runBuiltFrame(const FrameBuilder::Setup& setup, PipelineCache& pipelines, PhysicalResources& resources,
-                             GraphExecutor& executor, const FrameBuffers& buffers, int warmup, int repeat, bool describeGraph) {
+                             GraphExecutor& executor, const FrameBuffers& buffers, int warmup, int repeat, bool describeGraph,
+                             CallgrindCounter* counter) {
   BuiltFrameRuns runs;
   for (int run = 0; run < warmup + repeat; ++run) {
     auto start = Clock::now();
     auto builtFrame = buildFrame(pipelines, setup, buffers);
-    auto compiled = compileAndRecord(builtFrame.graph, resources, executor);
-    auto recorded = Clock::now();
-    auto times = executor.submitAndWait();
-    runs.recordMs += msBetween(start, recorded);
-    runs.gpuMs += msSince(recorded);
-    resources.keepFinalStates(builtFrame.graph, compiled);
+    RunOfFrame once = runOnce(builtFrame, resources, executor, run >= warmup ? counter : nullptr, start, runs);
     if (run < warmup) continue;
-    if (runs.passes.empty())
-      for (const auto& p : compiled.passes) runs.passes.push_back({builtFrame.graph.passes()[p.pass].name, 0, {}});
-    for (size_t i = 0; i < times.size(); ++i) {
-      runs.passes[i].startMs = times[i].startMs;
-      runs.passes[i].durationsMs.push_back(times[i].durationMs);
-    }
-    runs.debug = builtFrame.debug;
-    runs.values = builtFrame.values;
-    runs.outputFormat = builtFrame.outputFormat;
-    runs.outputLayout = builtFrame.outputLayout;
-    if (!describeGraph || run + 1 < warmup + repeat) continue;
-    for (const auto& c : compiled.culled) {
-      const auto& name = builtFrame.graph.passes()[c.pass].name;
-      auto note = builtFrame.notes.find(name);
-      runs.culled.push_back({name, note == builtFrame.notes.end() ? c.reason : note->second + "; " + c.reason});
-    }
-    runs.graph = graph::snapshotOf(builtFrame.graph, compiled);
+    keepMeasures(builtFrame, once, runs);
+    if (describeGraph && run + 1 == warmup + repeat) describeRun(builtFrame, once.compiled, runs);
   }
   return runs;
 }
@@ -306,7 +337,9 @@ class Replay {
   Replay(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const FrameSink& sink, int begin, int end)
       : vk_(vk), capture_(capture), options_(options), sink_(sink), begin_(begin), end_(end),
         settings_(options.settings), historyWanted_(historyNeedsOf(settings_, end - begin).keeps),
-        pipelines_(vk), resources_(vk), executor_(vk) {}
+        pipelines_(vk), resources_(vk), executor_(vk) {
+    if (options.cost != CostMeasure::Time) counter_ = std::make_unique<CallgrindCounter>(options.costDumps);
+  }
 
   ReplayResult run() {
     result_.device = vk_.info;
@@ -441,7 +474,7 @@ class Replay {
     if (index == options_.testPoisonHistoryAt && record.historyValid) poisonHistory(setup, outputDesc_, resources_, executor_);
     bool lastFrame = index + 1 == end_;
     auto runs = runBuiltFrame(setup, pipelines_, resources_, executor_, frameBuffers(index), options_.warmup,
-                              options_.repeat, lastFrame);
+                              options_.repeat, lastFrame, counter_.get());
     record.passes = std::move(runs.passes);
     record.techniqueValues = runs.values;
     record.recordMs = runs.recordMs;
@@ -579,6 +612,7 @@ class Replay {
   PipelineCache pipelines_;
   PhysicalResources resources_;
   GraphExecutor executor_;
+  std::unique_ptr<CallgrindCounter> counter_;  // counted cost only
   std::unique_ptr<StagingBuffers> staging_;
   HistoryTracker history_;
   Clock::time_point setupStart_;

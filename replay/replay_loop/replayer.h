@@ -3,6 +3,7 @@
 // the frame's compiled render graph `warmup + repeat` times with timestamps, read the result back,
 // and decide history validity for the next frame. Outputs go to a FrameSink. Which passes run is
 // the technique's (technique_api/technique.h); this loop is the same for every technique.
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <set>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
+#include "cost/callgrind_counter.h"
 #include "graph/render_graph.h"
 #include "replay_loop/camera_jump.h"
 #include "replay_loop/readback.h"
@@ -44,13 +46,16 @@ struct ReplayOptions {
   bool keepHistoryOnCut = false;  // test-only: breaks history invalidation on purpose
   int testPoisonHistoryAt = -1;   // test-only: before this frame (if its history is valid) its "ao_history" is NaN
   CameraJumpLimits cameraJump;    // history is also reset when the camera turns or moves further
+  CostMeasure cost = CostMeasure::Time;  // counted: one run a frame after the warm-up, under callgrind
+  std::filesystem::path costDumps;       // counted: the --callgrind-out-file valgrind was given
   std::function<void(int done, int total)> progress;
 };
 
 struct PassTiming {
   std::string name;
   double startMs = 0;                // start within the frame's GPU work (last repetition)
-  std::vector<double> durationsMs;   // one per timed repetition
+  std::vector<double> durationsMs;   // one per timed repetition; none under counted cost
+  EventCounts counts;                // counted cost: callgrind's events of the pass's one counted run
 };
 
 struct FrameRecord {

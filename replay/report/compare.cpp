@@ -11,6 +11,7 @@
 #include "core/json_input.h"
 #include "core/plain_text.h"
 #include "core/compare_stats.h"
+#include "report/compare_counts.h"
 #include "run/gpu_total.h"
 
 namespace aor {
@@ -118,6 +119,8 @@ void addTotal(TimingSamples& samples, const std::vector<TimedFrame>& frames) {
 TimingSamples fromReport(const nlohmann::json& report, const fs::path& path) {
   if (!report.contains("passes") || !report["passes"].is_array())
     throw InputError(path.string(), std::nullopt, "passes", "missing (not a report.json of aoreplay run)");
+  if (const RunMeasure measure = measureOfReport(report, path); measure.counted())
+    return countedSamples(report, path, measure.name);
   TimingSamples samples;
   for (size_t i = 0; i < report["passes"].size(); ++i) {
     const auto& pass = report["passes"][i];
@@ -221,14 +224,21 @@ std::vector<fs::path> reportsUnder(const fs::path& folder) {
 
 }  // namespace
 
+RunMeasure loadRunMeasure(const fs::path& path) {
+  auto doc = readJsonFile(path);
+  if (doc.is_object() && memberOr<std::string>(doc, "tool", "", path, "") == "aoreplay") return measureOfReport(doc, path);
+  return {};
+}
+
 SideTimings loadSide(const fs::path& path) {
   SideTimings side{path.string(), {}};
   std::error_code ec;
   if (!fs::is_directory(path, ec)) {
-    side.runs.push_back({path.string(), loadTimingSamples(path)});
+    side.runs.push_back({path.string(), loadTimingSamples(path), loadRunMeasure(path)});
     return side;
   }
-  for (const auto& report : reportsUnder(path)) side.runs.push_back({report.string(), loadTimingSamples(report)});
+  for (const auto& report : reportsUnder(path))
+    side.runs.push_back({report.string(), loadTimingSamples(report), loadRunMeasure(report)});
   if (side.runs.empty())
     throw InputError(path.string(), std::nullopt, "", "holds no report.json (a folder's runs are its report.json files, searched recursively)");
   return side;
@@ -248,7 +258,9 @@ const char* verdictText(Verdict v) {
   return "?";
 }
 
-const char* levelText(Level level) { return level == Level::Runs ? "runs" : "samples"; }
+const char* levelText(Level level) {
+  return level == Level::Runs ? "runs" : level == Level::Counts ? "counts" : "samples";
+}
 
 namespace {
 
@@ -346,6 +358,8 @@ void decideVerdict(PassComparison& p, Level level, const CompareOptions& options
 }  // namespace
 
 Comparison compareTimings(const SideTimings& baseline, const SideTimings& candidate, const CompareOptions& options) {
+  if (const std::string measure = commonMeasure(baseline, candidate); measure != "time")
+    return compareCounts(baseline, candidate, measure, options);
   Comparison c;
   c.baselineSource = baseline.source;
   c.newSource = candidate.source;
@@ -399,11 +413,15 @@ std::string verdictCell(const PassComparison& p, Level level) {
   return cell;
 }
 
-std::string header(const Comparison& c) {
+std::string header(const Comparison& c, const CompareOptions& options) {
   std::string text = fmt::format("baseline: {} ({}); new: {} ({})\n", c.baselineSource.empty() ? "-" : c.baselineSource,
                                  plural(c.baselineRuns, "run"), c.newSource.empty() ? "-" : c.newSource,
                                  plural(c.newRuns, "run"));
-  if (c.level == Level::Runs)
+  if (c.level == Level::Counts)
+    text += fmt::format("values: {} counted under callgrind, exact: a change of x{:.4g} or more either way is a "
+                        "verdict, without statistics\n",
+                        c.measure, 1.0 + options.minEffectCounts);
+  else if (c.level == Level::Runs)
     text += fmt::format("values: one per run (its median; the total's: its median per-repetition sum), {} a side "
                         "at the least for a verdict over {}\n",
                         c.fewestPerSide, plural(c.judgedNames, "judged name"));
@@ -417,10 +435,11 @@ std::string header(const Comparison& c) {
 
 }  // namespace
 
-std::string comparisonTable(const Comparison& c) {
+std::string comparisonTable(const Comparison& c, const CompareOptions& options) {
   size_t width = 8;
   for (const auto& p : c.passes) width = std::max(width, p.name.size());
-  std::string table = header(c);
+  std::string table = header(c, options);
+  if (c.level == Level::Counts) return table + countsTable(c, width);
   table += fmt::format("{:<{}} {:>11} {:>11} {:>8} {:>9} {:>9} {:>9}  {}\n", "name", width, "base ms", "new ms", "ratio",
                        "threshold", "p (Holm)", "n", "verdict");
   for (const auto& p : c.passes)
@@ -444,8 +463,12 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
                       {"baseline_log_spread", p.baselineSpread}, {"new_log_spread", p.newSpread},
                       {"p_value", p.pValue}, {"p_exact", p.exact}, {"p_holm", p.pHolm},
                       {"baseline_larger_share", p.baselineLargerShare},
-                      {"baseline_count", p.baselineCount}, {"new_count", p.newCount}});
+                      {"baseline_count", p.baselineCount}, {"new_count", p.newCount},
+                      {"baseline_value", p.baselineMedian}, {"new_value", p.newMedian}});
+  if (c.level == Level::Counts)  // counts are not milliseconds: only the measure-neutral names
+    for (auto& p : passes) p.erase("baseline_median_ms"), p.erase("new_median_ms");
   return {{"level", levelText(c.level)},
+          {"measure", c.measure},
           {"baseline", {{"source", c.baselineSource}, {"runs", c.baselineRuns}}},
           {"new", {{"source", c.newSource}, {"runs", c.newRuns}}},
           {"judged_names", c.judgedNames},
@@ -458,7 +481,8 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
           {"failed", c.fails(options)},
           {"options", {{"alpha", options.alpha}, {"min_effect", options.minEffect},
                        {"min_effect_ms", options.minEffectMs}, {"spread_multiple", options.spreadMultiple},
-                       {"judge_host_copies", options.judgeHostCopies}, {"fail_on_unknown", options.failOnUnknown}}}};
+                       {"judge_host_copies", options.judgeHostCopies}, {"fail_on_unknown", options.failOnUnknown},
+                       {"min_effect_counts", options.minEffectCounts}}}};
 }
 
 }  // namespace aor

@@ -29,9 +29,20 @@ using TimingSamples = std::vector<TimingSeries>;  // in file order
 // naming the file and field.
 TimingSamples loadTimingSamples(const std::filesystem::path& path);
 
+// What a run's values measure: milliseconds ("time"), or a count under callgrind ("instructions",
+// "cycles") with report.json's "cost" block, which names everything the counts depend on.
+struct RunMeasure {
+  std::string name = "time";
+  nlohmann::json dependencies;  // counted only
+  bool counted() const { return name != "time"; }
+};
+// report.json's measure: its "cost" block's, else time (Google Benchmark JSON: time).
+RunMeasure loadRunMeasure(const std::filesystem::path& path);
+
 struct RunTimings {
   std::string source;  // the file
   TimingSamples series;
+  RunMeasure measure;
 };
 // One side of a comparison: its runs.
 struct SideTimings {
@@ -51,6 +62,7 @@ struct CompareOptions {
   double spreadMultiple = 2.0;  // ...and at least this many spreads (robust, of log values) of the noisier side
   double minEffectMs = 0.001;   // ...and at least this absolute change: microsecond passes shift by
                                 // a fraction of a microsecond between processes (compare_README.md)
+  double minEffectCounts = 0.001;  // counts: the smallest change that is a verdict (no statistics)
   bool judgeHostCopies = false; // host copies vary with host memory placement from process to process
   bool failOnUnknown = false;   // a judged `unknown` fails the comparison too
 };
@@ -60,7 +72,8 @@ const char* verdictText(Verdict v);
 
 // What the test's values are: one per run (each side has 2 runs or more), or, with a single run on
 // a side, the runs' own samples (frames x repetitions), which cannot see run-to-run variation.
-enum class Level { Runs, Samples };
+// Counted values are exact: one per run, judged without statistics (compare_README.md, "Counts").
+enum class Level { Runs, Samples, Counts };
 const char* levelText(Level level);
 
 struct PassComparison {
@@ -86,6 +99,7 @@ struct PassComparison {
 
 struct Comparison {
   Level level = Level::Samples;
+  std::string measure = "time";  // time, instructions or cycles
   std::string baselineSource, newSource;
   size_t baselineRuns = 1, newRuns = 1;
   size_t judgedNames = 0;
@@ -101,7 +115,7 @@ Comparison compareTimings(const SideTimings& baseline, const SideTimings& candid
 // One run a side.
 Comparison compareTimings(const TimingSamples& baseline, const TimingSamples& candidate, const CompareOptions& options);
 
-std::string comparisonTable(const Comparison& c);
+std::string comparisonTable(const Comparison& c, const CompareOptions& options = {});
 nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options);
 
 }  // namespace aor

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -21,6 +22,76 @@ namespace {
 
 nlohmann::json summaryJson(const Summary& s) {
   return {{"min", s.min}, {"median", s.median}, {"max", s.max}, {"mean", s.mean}, {"count", s.count}};
+}
+
+// Counted cost: each pass's value per frame (frames in order), under the run's measure.
+std::vector<std::pair<std::string, std::vector<double>>> countsByPass(const ReplayResult& result, CostMeasure measure) {
+  std::vector<std::pair<std::string, std::vector<double>>> passes;
+  for (const auto& frame : result.frames)
+    for (const auto& p : frame.passes) {
+      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& e) { return e.first == p.name; });
+      if (it == passes.end()) it = passes.insert(passes.end(), {p.name, {}});
+      it->second.push_back(costOf(measure, p.counts));
+    }
+  return passes;
+}
+
+double sumOf(const std::vector<double>& values) { return std::accumulate(values.begin(), values.end(), 0.0); }
+
+// What counts depend on: two runs' counts compare exactly only when all of it is the same.
+nlohmann::json costDependencies(const ReplayOptions& options, const ReplayResult& result) {
+  nlohmann::json cost{{"measure", costMeasureName(options.cost)},
+                      {"device", result.device.name},
+                      {"driver", result.device.driverInfo},
+                      {"cpu", countedCpuName()},
+                      {"valgrind", countedValgrindVersion()},
+                      {"excluded", "the C library's allocator and thread synchronisation"}};
+  std::string key;
+  for (const char* k : {"measure", "device", "driver", "cpu", "valgrind"}) key += cost[k].get<std::string>() + "|";
+  if (options.cost == CostMeasure::Cycles) {
+    cost["cache"] = {{"I1", kCostCacheI1}, {"D1", kCostCacheD1}, {"LL", kCostCacheLL}};
+    cost["formula"] = kCyclesFormula;
+    key += std::string(kCostCacheI1) + "/" + kCostCacheD1 + "/" + kCostCacheLL;
+  }
+  cost["key"] = key;
+  return cost;
+}
+
+// report.json's counted cost: per pass the counts of each frame and their total, the run's totals
+// (compute passes; host copies apart) and what the counts depend on.
+void addCountedCost(nlohmann::json& report, const ReplayOptions& options, const ReplayResult& result) {
+  const std::string key = costMeasureName(options.cost);
+  nlohmann::json passes = nlohmann::json::array();
+  double compute = 0, copies = 0;
+  for (const auto& [name, perFrame] : countsByPass(result, options.cost)) {
+    passes.push_back({{"name", name}, {key, {{"total", sumOf(perFrame)}, {"per_frame", perFrame}}}});
+    (isHostCopyPass(name) ? copies : compute) += sumOf(perFrame);
+  }
+  report["passes"] = passes;
+  report[key + "_total"] = compute;
+  report[key + "_host_copies_total"] = copies;
+  report["cost"] = costDependencies(options, result);
+}
+
+// report.json's GPU time: per pass its summary and every sample, and the run's totals.
+void addTimedCost(nlohmann::json& report, const ReplayResult& result) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& [name, samples] : samplesByPass(result)) {
+    auto gpuMs = summaryJson(summarize(samples));
+    gpuMs["samples"] = samples;  // every timed run, frame-major: what `aoreplay compare` tests
+    passes.push_back({{"name", name}, {"gpu_ms", gpuMs}});
+  }
+  report["passes"] = passes;
+  auto frames = timedFrames(result);
+  report["gpu_ms_total_median"] = totalMedianMs(frames, PassGroup::Compute);
+  report["gpu_ms_host_copies_median"] = totalMedianMs(frames, PassGroup::HostCopies);
+}
+
+nlohmann::json framePassesJson(const FrameRecord& f, CostMeasure measure) {
+  nlohmann::json passes = nlohmann::json::object();
+  for (const auto& p : f.passes)
+    passes[p.name] = measure == CostMeasure::Time ? summarize(p.durationsMs).median : costOf(measure, p.counts);
+  return passes;
 }
 
 }  // namespace
@@ -83,16 +154,8 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
                       {"preload_budget_mib", double(options.preloadBudgetBytes) / double(1 << 20)},
                       {"chunk_frames", result.chunkFrames}};
 
-  nlohmann::json passes = nlohmann::json::array();
-  for (const auto& [name, samples] : samplesByPass(result)) {
-    auto gpuMs = summaryJson(summarize(samples));
-    gpuMs["samples"] = samples;  // every timed run, frame-major: what `aoreplay compare` tests
-    passes.push_back({{"name", name}, {"gpu_ms", gpuMs}});
-  }
-  report["passes"] = passes;
-  auto frames = timedFrames(result);
-  report["gpu_ms_total_median"] = totalMedianMs(frames, PassGroup::Compute);
-  report["gpu_ms_host_copies_median"] = totalMedianMs(frames, PassGroup::HostCopies);
+  if (options.cost == CostMeasure::Time) addTimedCost(report, result);
+  else addCountedCost(report, options, result);
   nlohmann::json culled = nlohmann::json::array();
   for (const auto& c : result.culled) culled.push_back({{"name", c.name}, {"reason", c.reason}});
   report["culled_passes"] = culled;
@@ -105,9 +168,7 @@ nlohmann::json buildReport(const Capture& capture, const ReplayOptions& options,
   for (const auto& f : result.frames) {
     nlohmann::json frame{{"index", f.index}, {"history", f.historyValid ? "valid" : "reset"}};
     if (!f.historyValid) frame["reset_reason"] = f.resetReason;
-    nlohmann::json framePasses = nlohmann::json::object();
-    for (const auto& p : f.passes) framePasses[p.name] = summarize(p.durationsMs).median;
-    frame["gpu_ms_median"] = framePasses;
+    frame[options.cost == CostMeasure::Time ? "gpu_ms_median" : costMeasureName(options.cost)] = framePassesJson(f, options.cost);
     frame["host_ms"] = {{"decode", f.decodeMs}, {"upload", f.uploadMs},     {"wait", f.waitMs},
                         {"record", f.recordMs}, {"gpu", f.gpuWallMs},       {"readback", f.readbackMs},
                         {"write", f.writeMs}};
@@ -192,6 +253,21 @@ void writeText(const fs::path& path, const std::string& text) {
 }
 
 void writeJson(const fs::path& path, const nlohmann::json& json) { writeText(path, json.dump(2) + "\n"); }
+
+std::string countedPassTable(const ReplayResult& result, CostMeasure measure) {
+  const char* name = costMeasureName(measure);
+  std::string table = fmt::format("{:<22} {:>16} {:>16} {:>7}\n", "pass", fmt::format("{} total", name), "per frame max",
+                                  "frames");
+  double compute = 0;
+  for (const auto& [pass, perFrame] : countsByPass(result, measure)) {
+    table += fmt::format("{:<22} {:>16.0f} {:>16.0f} {:>7}\n", pass, sumOf(perFrame),
+                         *std::max_element(perFrame.begin(), perFrame.end()), perFrame.size());
+    if (!isHostCopyPass(pass)) compute += sumOf(perFrame);
+  }
+  return table + fmt::format("{:<22} {:>16.0f}\ntotal: the compute passes' {} over the frames, counted under callgrind "
+                             "(host copies apart; the C library's allocator and locks left out)\n",
+                             "total", compute, name);
+}
 
 std::string passTable(const ReplayResult& result) {
   auto row = [](const std::string& name, const Summary& s) {

@@ -28,5 +28,7 @@ void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
 // Per-pass table (min / median / max GPU ms over all timed runs) for the terminal, and the total's
 // row: the same over the per-repetition sums of the compute passes (report/gpu_total.h).
 std::string passTable(const ReplayResult& result);
+// Counted cost's table: per pass its count over the frames and the largest of a frame.
+std::string countedPassTable(const ReplayResult& result, CostMeasure measure);
 
 }  // namespace aor

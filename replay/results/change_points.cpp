@@ -243,6 +243,57 @@ void scan(const Flat& f, const std::vector<std::string>& judged, size_t lo, size
   scan(f, judged, last, hi, o, out);
 }
 
+// A counted series: a commit's value of a pass is the median of its runs (which agree).
+std::vector<double> commitValues(const StoredCommit& commit, const std::vector<std::string>& judged) {
+  std::vector<double> values;
+  for (const auto& name : judged) {
+    std::vector<double> runs;
+    for (const auto& r : commit.runs)
+      for (const auto& p : r.passes)
+        if (p.name == name) runs.push_back(p.valueMs);
+    values.push_back(medianOf(runs));
+  }
+  return values;
+}
+
+PassShift exactShift(const std::string& pass, size_t before, size_t after, double from, double to, double minEffect) {
+  PassShift s;
+  s.pass = pass;
+  s.before = before;
+  s.after = after;
+  s.beforeMedianMs = from;
+  s.afterMedianMs = to;
+  s.ratio = s.lower = s.upper = to / from;
+  s.intervalConfidence = 1;
+  s.changed = std::abs(std::log(s.ratio)) >= std::log1p(minEffect);
+  s.pValue = s.pHolm = s.changed ? 0 : 1;
+  s.separation = s.changed ? 0.5 : 0;
+  return s;
+}
+
+// Counts are exact: every boundary between two commits with runs is a change where a judged pass
+// moved by at least minEffectCounts; the largest such move decides slower or faster.
+void exactChanges(const SeriesHistory& h, const std::vector<std::string>& judged, const TrendOptions& o,
+                  std::vector<ChangePoint>& out) {
+  std::optional<size_t> previous;
+  for (size_t c = 0; c < h.commits.size(); ++c) {
+    if (h.commits[c].runs.empty()) continue;
+    if (previous) {
+      auto from = commitValues(h.commits[*previous], judged), to = commitValues(h.commits[c], judged);
+      ChangePoint change{c, c, false, 0, {}};
+      double largest = 0;
+      for (size_t k = 0; k < judged.size(); ++k) {
+        change.passes.push_back(exactShift(judged[k], h.commits[*previous].runs.size(), h.commits[c].runs.size(), from[k],
+                                           to[k], o.minEffectCounts));
+        double move = std::abs(std::log(change.passes.back().ratio));
+        if (change.passes.back().changed && move > largest) largest = move, change.slower = to[k] > from[k];
+      }
+      if (largest > 0) out.push_back(std::move(change));
+    }
+    previous = c;
+  }
+}
+
 }  // namespace
 
 bool SeriesTrend::newSlowdown() const { return !changes.empty() && changes.back().slower; }
@@ -252,6 +303,10 @@ SeriesTrend findChangePoints(const SeriesHistory& history, const TrendOptions& o
   trend.judged = judgedPasses(history);
   for (const auto& c : history.commits) trend.runs += c.runs.size();
   if (trend.judged.empty() || trend.runs == 0) return trend;
+  if (history.key.counted()) {
+    exactChanges(history, trend.judged, options, trend.changes);
+    return trend;
+  }
   Flat flat = flatten(history, trend.judged);
   scan(flat, trend.judged, 0, flat.commitOf.size(), options, trend.changes);
   return trend;

@@ -4,7 +4,9 @@
 // (core/compare_stats.h), the Hodges-Lehmann shift and its interval (shift_estimate.h), Holm
 // over the passes at the boundary, and Bonferroni over the boundaries scanned (a scan of B
 // boundaries is B chances of a false alarm). Deterministic: the same runs give the same answer
-// whatever order they were recorded in. The rules and why: results/README.md.
+// whatever order they were recorded in. A counted series (run --cost) is exact: each commit's
+// value against the next commit's, a change of at least minEffectCounts is one, without tests
+// (one run a side suffices). The rules and why: results/README.md.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -19,6 +21,7 @@ struct TrendOptions {
   size_t minRuns = 4;       // runs a side at least, else the boundary is not tested
   double alpha = 0.05;      // false-alarm rate per series and segment
   double minEffect = 0.02;  // smallest shift that counts, as a ratio either way (x1.02 or x1/1.02)
+  double minEffectCounts = 0.001;  // a counted series': the smallest change that counts (no statistics)
   double confidence = 0.95; // of the shift's interval
 };
 

@@ -14,10 +14,13 @@ std::string SeriesKey::fingerprint() const {
   nlohmann::json key{{"capture_sha256", captureSha256}, {"technique", technique}, {"settings", settings},
                      {"frames", frames},                {"timing_mode", timingMode}, {"device", device},
                      {"driver", driver},                {"tool_version", toolVersion}};
+  if (counted()) key["measure"] = measure, key["cost_key"] = costKey;
   return textSha256(key.dump());  // nlohmann writes keys sorted: the same text on every machine
 }
 
-std::string SeriesKey::label() const { return fmt::format("{} {} on {}", captureName, technique, device); }
+std::string SeriesKey::label() const {
+  return fmt::format("{} {} on {}{}", captureName, technique, device, counted() ? " (" + measure + ")" : "");
+}
 
 namespace {
 
@@ -63,6 +66,9 @@ ReportInput readReportInput(const fs::path& path) {
   key.device = text(report, "device.name", path);
   key.driver = text(report, "device.driver", path);
   key.toolVersion = text(report, "tool_version", path);
+  const RunMeasure measure = loadRunMeasure(path);
+  key.measure = measure.name;
+  if (measure.counted()) key.costKey = measure.dependencies.value("key", std::string());
   input.passes = loadTimingSamples(path);
   if (input.passes.empty()) throw InputError(path.string(), std::nullopt, "passes", "is empty: nothing was timed");
   return input;

@@ -19,7 +19,14 @@ struct SeriesKey {
   std::string timingMode;
   std::string device, driver;
   std::string toolVersion;
-  // SHA-256 of every field above but the capture's name, as one canonical JSON object.
+  // What the values measure: "time" (ms), or a count under callgrind ("instructions", "cycles")
+  // with the report's cost.key (device, driver, CPU model, valgrind, caches): counts compare only
+  // within one key, so another runner's CPU starts a series of its own.
+  std::string measure = "time";
+  std::string costKey;
+  bool counted() const { return measure != "time"; }
+  // SHA-256 of every field above but the capture's name, as one canonical JSON object (the
+  // measure and cost key only for counts, so timed series keep the fingerprints they had).
   std::string fingerprint() const;
   // "capture technique on device": what tables and plots call it.
   std::string label() const;
@@ -29,7 +36,7 @@ struct ReportInput {
   std::string source;        // the path as given
   std::string reportSha256;  // of the file's bytes: the run's identity (recording it twice stores it once)
   SeriesKey series;
-  TimingSamples passes;  // every pass and the total, as compare reads them
+  TimingSamples passes;  // every pass and the total, as compare reads them (counts: per frame)
 };
 
 // Throws InputError naming the file and field (a report from before report.json had

@@ -34,6 +34,12 @@ const std::vector<std::vector<std::string>> kMigrations = {
         "CREATE INDEX runs_by_series ON runs (series_id, commit_id)",
         "CREATE INDEX commits_by_position ON commits (position)",
     },
+    // 3: counted cost: what a series' values measure, and what its counts depend on. Values of a
+    // counted series (run_passes.value_ms, samples.ms) are counts.
+    {
+        "ALTER TABLE series ADD COLUMN measure TEXT NOT NULL DEFAULT 'time'",
+        "ALTER TABLE series ADD COLUMN cost_key TEXT NOT NULL DEFAULT ''",
+    },
 };
 
 std::string forDialect(std::string sql, Dialect dialect) {

@@ -52,9 +52,10 @@ std::int64_t seriesId(Database& db, const SeriesKey& key) {
   std::string fingerprint = key.fingerprint();
   db.execute(
       "INSERT INTO series (fingerprint, capture_name, capture_sha256, technique, settings, frames, timing_mode, "
-      "device, driver, tool_version) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (fingerprint) DO NOTHING",
+      "device, driver, tool_version, measure, cost_key) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) "
+      "ON CONFLICT (fingerprint) DO NOTHING",
       {fingerprint, key.captureName, key.captureSha256, key.technique, key.settings, key.frames, key.timingMode,
-       key.device, key.driver, key.toolVersion});
+       key.device, key.driver, key.toolVersion, key.measure, key.costKey});
   return *db.integerOrNone("SELECT id FROM series WHERE fingerprint = ?", {fingerprint});
 }
 
@@ -103,13 +104,13 @@ std::vector<SeriesHistory> loadHistory(Database& db, const std::string& filter, 
   std::vector<SeriesHistory> all;
   db.query(
       "SELECT id, fingerprint, capture_name, capture_sha256, technique, settings, frames, timing_mode, device, driver, "
-      "tool_version FROM series",
+      "tool_version, measure, cost_key FROM series",
       {}, [&](const Row& row) {
         SeriesHistory h;
         h.id = row.integer(0);
         h.fingerprint = row.text(1);
         h.key = {row.text(2), row.text(3), row.text(4), row.text(5), row.text(6), row.text(7), row.text(8), row.text(9),
-                 row.text(10)};
+                 row.text(10), row.text(11), row.text(12)};
         if (filter.empty() || h.fingerprint.starts_with(filter) || h.key.label().find(filter) != std::string::npos)
           all.push_back(std::move(h));
       });

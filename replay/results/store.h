@@ -34,7 +34,8 @@ RecordOutcome recordRuns(Database& db, const std::vector<ReportInput>& reports, 
 struct StoredPass {
   std::string name;
   bool hostCopy = false;
-  double valueMs = 0;  // the run's one value: the median of its samples (the total's: gpu_ms_total_median)
+  double valueMs = 0;  // the run's one value: the median of its samples (the total's: gpu_ms_total_median);
+                       // a counted series': the count over the run's frames
 };
 struct StoredRun {
   std::int64_t id = 0;

@@ -20,29 +20,45 @@ std::string where(const SeriesHistory& h, const ChangePoint& c) {
 
 }  // namespace
 
+// One change point: the passes at its boundary, as tested (timed) or as counted (exact).
+std::string changeText(const SeriesHistory& h, const ChangePoint& c, const TrendOptions& o) {
+  const bool counted = h.key.counted();
+  std::string out = fmt::format("  {}: {}\n", c.slower ? "SLOWER" : "faster", where(h, c));
+  if (counted) {
+    out += fmt::format("    {:<22} {:>6} {:>16} {:>16} {:>10}\n", "pass", "runs", "before", "after", "change");
+    for (const auto& p : c.passes)
+      out += fmt::format("    {:<22} {:>6} {:>16.0f} {:>16.0f} {:>10}{}\n", p.pass, fmt::format("{}+{}", p.before, p.after),
+                         p.beforeMedianMs, p.afterMedianMs, fmt::format("x{:.5f}", p.ratio), p.changed ? "  changed" : "");
+    return out + fmt::format("    ({} counted under callgrind, exact: changed at x{:.4g} or more either way)\n",
+                             h.key.measure, 1 + o.minEffectCounts);
+  }
+  out += fmt::format("    {:<22} {:>6} {:>10} {:>10} {:>8} {:>19} {:>10} {:>10}\n", "pass", "runs", "before ms",
+                     "after ms", "shift", "interval", "p", "p (Holm)");
+  for (const auto& p : c.passes)
+    out += fmt::format("    {:<22} {:>6} {:>10.4f} {:>10.4f} {:>8} {:>19} {:>10.2e} {:>10.2e}{}\n", p.pass,
+                       fmt::format("{}+{}", p.before, p.after), p.beforeMedianMs, p.afterMedianMs,
+                       fmt::format("x{:.3f}", p.ratio), fmt::format("[x{:.3f}, x{:.3f}]", p.lower, p.upper),
+                       p.pValue, p.pHolm, p.changed ? "  changed" : "");
+  return out + fmt::format("    (changed: p (Holm) <= {:.2e}, alpha {} over the boundaries scanned, and a shift of at least x{:.2f})\n",
+                           c.level, o.alpha, 1 + o.minEffect);
+}
+
 std::string trendTable(const std::vector<TrendResult>& results, const TrendOptions& o) {
   std::string out;
   for (const auto& r : results) {
     const auto& h = r.history;
     out += fmt::format("series {} {}: {} commits, {} runs\n", shortSha(h.fingerprint), h.key.label(), h.commits.size(),
                        r.trend.runs);
+    if (r.trend.changes.empty() && h.key.counted()) {
+      out += fmt::format("  no change ({} counted, exact; minimum effect x{:.4g})\n", h.key.measure, 1 + o.minEffectCounts);
+      continue;
+    }
     if (r.trend.changes.empty()) {
       out += fmt::format("  no change (windows of {} runs a side, at least {}; minimum effect x{:.2f})\n", o.window,
                          o.minRuns, 1 + o.minEffect);
       continue;
     }
-    for (const auto& c : r.trend.changes) {
-      out += fmt::format("  {}: {}\n", c.slower ? "SLOWER" : "faster", where(h, c));
-      out += fmt::format("    {:<22} {:>6} {:>10} {:>10} {:>8} {:>19} {:>10} {:>10}\n", "pass", "runs", "before ms",
-                         "after ms", "shift", "interval", "p", "p (Holm)");
-      for (const auto& p : c.passes)
-        out += fmt::format("    {:<22} {:>6} {:>10.4f} {:>10.4f} {:>8} {:>19} {:>10.2e} {:>10.2e}{}\n", p.pass,
-                           fmt::format("{}+{}", p.before, p.after), p.beforeMedianMs, p.afterMedianMs,
-                           fmt::format("x{:.3f}", p.ratio), fmt::format("[x{:.3f}, x{:.3f}]", p.lower, p.upper),
-                           p.pValue, p.pHolm, p.changed ? "  changed" : "");
-      out += fmt::format("    (changed: p (Holm) <= {:.2e}, alpha {} over the boundaries scanned, and a shift of at least x{:.2f})\n",
-                         c.level, o.alpha, 1 + o.minEffect);
-    }
+    for (const auto& c : r.trend.changes) out += changeText(h, c, o);
   }
   size_t slow = std::count_if(results.begin(), results.end(), [](const auto& r) { return r.trend.newSlowdown(); });
   out += fmt::format("{} series, {} with a new slowdown\n", results.size(), slow);
@@ -58,7 +74,8 @@ nlohmann::json trendJson(const std::vector<TrendResult>& results, const TrendOpt
       nlohmann::json passes = nlohmann::json::array();
       for (const auto& p : c.passes)
         passes.push_back({{"pass", p.pass}, {"runs_before", p.before}, {"runs_after", p.after},
-                          {"before_median_ms", p.beforeMedianMs}, {"after_median_ms", p.afterMedianMs},
+                          {h.key.counted() ? "before_value" : "before_median_ms", p.beforeMedianMs},
+                          {h.key.counted() ? "after_value" : "after_median_ms", p.afterMedianMs},
                           {"ratio", p.ratio}, {"interval", {p.lower, p.upper}},
                           {"interval_confidence", p.intervalConfidence}, {"p", p.pValue}, {"p_holm", p.pHolm},
                           {"changed", p.changed}});
@@ -69,7 +86,8 @@ nlohmann::json trendJson(const std::vector<TrendResult>& results, const TrendOpt
                          {"level", c.level},
                          {"passes", passes}});
     }
-    series.push_back({{"fingerprint", h.fingerprint}, {"label", h.key.label()}, {"capture", h.key.captureName},
+    series.push_back({{"fingerprint", h.fingerprint}, {"label", h.key.label()}, {"measure", h.key.measure},
+                      {"capture", h.key.captureName},
                       {"technique", h.key.technique}, {"device", h.key.device}, {"driver", h.key.driver},
                       {"commits", h.commits.size()}, {"runs", r.trend.runs}, {"judged", r.trend.judged},
                       {"changes", changes}, {"new_slowdown", r.trend.newSlowdown()}});
@@ -136,7 +154,7 @@ std::string trendPlot(const TrendResult& r) {
   options.xLabel = fmt::format("commit (in {} order; {} .. {})", h.positionKind,
                                h.commits.empty() ? "" : shortSha(h.commits.front().sha),
                                h.commits.empty() ? "" : shortSha(h.commits.back().sha));
-  options.yLabel = "GPU ms";
+  options.yLabel = h.key.counted() ? h.key.measure : "GPU ms";
   options.logY = true;
   options.width = 1000;
   for (const auto& c : r.trend.changes) {

@@ -91,14 +91,38 @@ void GraphExecutor::record(const graph::RenderGraph& graph, const graph::Compile
   for (const auto& pass : compiled.passes) {
     recordBarriers(context, pass.barriersBefore);
     vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, query++);
-    const auto& decl = graph.passes()[pass.pass];
-    context.pass = &decl;
-    context.compiled = &pass;
-    if (decl.execute) decl.execute(context);
+    recordPass(context, pass);
     vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, query++);
   }
   VK_CHECK(vkEndCommandBuffer(cmd_));
   recordedPasses_ = uint32_t(compiled.passes.size());
+}
+
+void GraphExecutor::recordPass(graph::PassContext& context, const graph::CompiledPass& pass) {
+  const auto& decl = context.graph.passes()[pass.pass];
+  context.pass = &decl;
+  context.compiled = &pass;
+  if (decl.execute) decl.execute(context);
+}
+
+std::vector<EventCounts> GraphExecutor::countPasses(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled,
+                                                    const std::vector<graph::PhysicalResource>& resources,
+                                                    CallgrindCounter& counter) {
+  std::vector<EventCounts> counts;
+  graph::PassContext context{vk_, cmd_, graph, resources};
+  for (const auto& pass : compiled.passes) {
+    VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
+    recordBarriers(context, pass.barriersBefore);
+    recordPass(context, pass);
+    VK_CHECK(vkEndCommandBuffer(cmd_));
+    counter.begin();
+    aor::submitAndWait(vk_, cmd_, fence_);
+    counts.push_back(counter.end(graph.passes()[pass.pass].name));
+  }
+  recordedPasses_ = 0;
+  return counts;
 }
 
 std::vector<GraphExecutor::PassTime> GraphExecutor::submitAndWait() {

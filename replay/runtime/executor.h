@@ -1,9 +1,10 @@
 #pragma once
 // Records a compiled render graph: before each live pass, one synchronization2 barrier batch built
 // from the graph's derived barriers (image barriers per range of levels and layers, buffer
-// barriers); around each pass, two timestamp queries.
+// barriers); around each pass, two timestamp queries. Under counted cost, each pass alone.
 #include <vector>
 
+#include "cost/callgrind_counter.h"
 #include "runtime/pass_context.h"
 #include "graph/render_graph.h"
 
@@ -26,6 +27,10 @@ class GraphExecutor {
   };
   // Submits what was recorded, waits for it and returns each live pass's GPU time.
   std::vector<PassTime> submitAndWait();
+  // Counted cost: each live pass recorded and submitted alone (with the barriers before it), the
+  // counter bracketing its submission and wait; the passes' counts in execution order.
+  std::vector<EventCounts> countPasses(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled,
+                                       const std::vector<graph::PhysicalResource>& resources, CallgrindCounter& counter);
 
  private:
   VulkanContext& vk_;
@@ -34,6 +39,8 @@ class GraphExecutor {
   VkQueryPool queries_ = VK_NULL_HANDLE;
   uint32_t queryCapacity_ = 0;
   uint32_t recordedPasses_ = 0;
+
+  void recordPass(graph::PassContext& context, const graph::CompiledPass& pass);
 };
 
 }  // namespace aor

@@ -19,8 +19,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// This process's scratch folder, removed when the test program ends (tests run one a process).
+const fs::path& scratchRoot() {
+  static const struct Root {
+    fs::path path = fs::path(testing::TempDir()) / ("aor_generator_" + std::to_string(::getpid()));
+    ~Root() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  } root;
+  return root.path;
+}
+
 fs::path scratch(const std::string& name) {
-  const fs::path p = fs::path(testing::TempDir()) / ("aor_generator_" + std::to_string(::getpid())) / name;
+  const fs::path p = scratchRoot() / name;
   fs::remove_all(p);
   return p;
 }

@@ -160,3 +160,58 @@ TEST(ChangePoints, NewestRunsAreJudgedOnceEnoughFollowTheChange) {
 
 }  // namespace
 }  // namespace aor::results
+
+namespace aor::results {
+namespace {
+
+// A counted series: exact values, one run a commit; from commit `stepAt` on gtao is x`step`.
+SeriesHistory countedHistory(size_t commits, size_t stepAt, double step) {
+  SeriesHistory h = history(commits, 1, commits, 1.0, 0.0, 1);  // flat and noise-free
+  h.key.measure = "instructions";
+  h.key.costKey = "instructions|test device|...";
+  for (size_t c = stepAt; c < commits; ++c)
+    for (auto& p : h.commits[c].runs[0].passes)
+      if (p.name == "gtao" || p.name == "total") p.valueMs *= p.name == "gtao" ? step : (2.0 * step + 0.5) / 2.5;
+  return h;
+}
+
+TEST(ChangePoints, CountedSeriesChangeAtTheFirstCommitThatDiffersWithOneRunASide) {
+  auto trend = findChangePoints(countedHistory(6, 4, 1.002), TrendOptions{});
+  ASSERT_EQ(trend.changes.size(), 1u);
+  EXPECT_EQ(trend.changes[0].firstCommit, 4u);
+  EXPECT_FALSE(trend.changes[0].isRange());
+  EXPECT_TRUE(trend.newSlowdown());
+  for (const auto& p : trend.changes[0].passes) {
+    EXPECT_EQ(p.before, 1u);
+    EXPECT_EQ(p.changed, p.pass == "gtao" || p.pass == "total") << p.pass;
+  }
+}
+
+TEST(ChangePoints, CountedSeriesBelowTheMinimumEffectIsNoChange) {
+  EXPECT_TRUE(findChangePoints(countedHistory(6, 4, 1.0005), TrendOptions{}).changes.empty());
+  TrendOptions finer;
+  finer.minEffectCounts = 0.0001;
+  EXPECT_EQ(findChangePoints(countedHistory(6, 4, 1.0005), finer).changes.size(), 1u);
+  // The same history read as time (statistics, at least 4 runs a side) finds nothing in one run a commit.
+  SeriesHistory timed = countedHistory(6, 4, 1.5);
+  timed.key.measure = "time";
+  EXPECT_TRUE(findChangePoints(timed, TrendOptions{}).changes.empty());
+}
+
+TEST(SeriesKeys, CountsStartSeriesOfTheirOwnAndTimedFingerprintsStayAsTheyWere) {
+  SeriesKey timed;
+  timed.captureSha256 = "abc";
+  timed.technique = "gtao";
+  SeriesKey counted = timed, otherCpu = timed;
+  counted.measure = otherCpu.measure = "instructions";
+  counted.costKey = "instructions|lavapipe|Mesa|CPU A|valgrind-3.19.0|";
+  otherCpu.costKey = "instructions|lavapipe|Mesa|CPU B|valgrind-3.19.0|";
+  EXPECT_NE(timed.fingerprint(), counted.fingerprint());
+  EXPECT_NE(counted.fingerprint(), otherCpu.fingerprint());
+  SeriesKey timedWithKey = timed;
+  timedWithKey.costKey = "ignored for time";
+  EXPECT_EQ(timed.fingerprint(), timedWithKey.fingerprint());
+}
+
+}  // namespace
+}  // namespace aor::results

@@ -60,8 +60,11 @@ TEST(ResultsStore, VersionOneStoreIsMigratedKeepingItsRows) {
     auto db = openDatabase(t.file.string(), true);
     migrate(*db);
     SQLite::Database raw(t.file.string(), SQLite::OPEN_READWRITE);
+    raw.exec("ALTER TABLE series DROP COLUMN measure; ALTER TABLE series DROP COLUMN cost_key");
     raw.exec("DROP INDEX runs_by_series; DROP INDEX commits_by_position; PRAGMA user_version = 1");
     raw.exec("INSERT INTO commits (sha, branch, position_kind, position) VALUES ('old', 'main', 'ordinal', 1)");
+    raw.exec("INSERT INTO series (fingerprint, capture_name, capture_sha256, technique, settings, frames, timing_mode, "
+             "device, driver, tool_version) VALUES ('f', 'c', 's', 'gtao', '{}', '[0,1]', 'isolated', 'd', 'r', 'v')");
   }
   auto db = openDatabase(t.file.string(), true);
   migrate(*db);
@@ -69,6 +72,8 @@ TEST(ResultsStore, VersionOneStoreIsMigratedKeepingItsRows) {
   EXPECT_EQ(countRows(*db).commits, 1);
   SQLite::Database raw(t.file.string());
   EXPECT_EQ(raw.execAndGet("SELECT COUNT(*) FROM sqlite_master WHERE name = 'runs_by_series'").getInt(), 1);
+  // Version 3: series recorded before counted cost measure time.
+  EXPECT_EQ(raw.execAndGet("SELECT measure || '/' || cost_key FROM series WHERE fingerprint = 'f'").getString(), "time/");
 }
 
 TEST(ResultsStore, MissingStoreIsCreatedOnlyWhenAsked) {

@@ -1,6 +1,9 @@
 #include "report/html/run_page.h"
 
+#include <algorithm>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -17,6 +20,40 @@ using json = nlohmann::json;
 
 std::string text(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
 
+// "gpu_ms" for a timed run, else the counted measure ("instructions", "cycles").
+std::string measureOf(const json& report) {
+  return report.contains("cost") ? report["cost"].value("measure", "gpu_ms") : std::string("gpu_ms");
+}
+
+// A pass's figures for the tables and bars: over frames x repetitions for time, over frames for counts.
+struct PassFigures {
+  double median = 0, min = 0, max = 0;
+  size_t count = 0;
+};
+
+PassFigures figuresOf(const json& pass, const std::string& measure) {
+  if (measure == "gpu_ms") {
+    const json& ms = pass["gpu_ms"];
+    return {ms["median"].get<double>(), ms["min"].get<double>(), ms["max"].get<double>(), ms["count"].get<size_t>()};
+  }
+  std::vector<double> v = pass[measure]["per_frame"].get<std::vector<double>>();
+  if (v.empty()) return {};
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back(), n};
+}
+
+std::pair<std::string, std::string> costFact(const json& r) {
+  const std::string measure = measureOf(r);
+  if (measure == "gpu_ms")
+    return {"GPU total (median per frame)", fmt::format("{:.4g} ms (compute passes; host copies add {:.4g} ms)",
+                                                        r["gpu_ms_total_median"].get<double>(),
+                                                        r["gpu_ms_host_copies_median"].get<double>())};
+  return {measure + " (counted)", fmt::format("{:.0f} over the frames (compute passes; host copies add {:.0f}); {}",
+                                              r[measure + "_total"].get<double>(),
+                                              r[measure + "_host_copies_total"].get<double>(), text(r["cost"]["key"]))};
+}
+
 std::string overviewHtml(const RunPage& page) {
   const json& r = page.report;
   const json& c = r["capture"];
@@ -31,8 +68,7 @@ std::string overviewHtml(const RunPage& page) {
       {"settings", r["settings"].dump()},
       {"timing", fmt::format("{}, repeat {}, warm-up {}", text(r["timing"]["mode"]), r["run"]["repeat"].get<int>(),
                              r["run"]["warmup"].get<int>())},
-      {"GPU total (median per frame)", fmt::format("{:.4g} ms (compute passes; host copies add {:.4g} ms)",
-                                                   r["gpu_ms_total_median"].get<double>(), r["gpu_ms_host_copies_median"].get<double>())},
+      costFact(r),
       {"validation", r.contains("validation") ? r["validation"].dump() : "off"},
   };
   std::string html = factList(facts);
@@ -42,10 +78,13 @@ std::string overviewHtml(const RunPage& page) {
 
 std::string passTimesHtml(const json& report) {
   std::vector<Bar> bars;
+  const std::string measure = measureOf(report);
   for (const auto& p : report["passes"]) {
-    const json& ms = p["gpu_ms"];
-    bars.push_back({text(p["name"]), ms["median"].get<double>(), ms["min"].get<double>(), ms["max"].get<double>()});
+    const PassFigures f = figuresOf(p, measure);
+    bars.push_back({text(p["name"]), f.median, f.min, f.max});
   }
+  if (measure != "gpu_ms")
+    return barChartSvg(bars, measure + " per frame (counted under callgrind): bar = median, whiskers = min to max over frames");
   return barChartSvg(bars, "GPU time per frame (ms): bar = median, whiskers = min to max over frames x repetitions");
 }
 
@@ -80,15 +119,18 @@ std::optional<double> numberAt(const json& j, std::initializer_list<const char*>
 }
 
 std::string frameTimesHtml(const json& report, const std::string& noHistoryReason) {
+  const std::string measure = measureOf(report);
+  const bool counted = measure != "gpu_ms";
+  const std::string frameKey = counted ? measure : "gpu_ms_median";
   std::vector<PlotSeries> series;
   for (const auto& p : report["passes"]) {
     std::string name = text(p["name"]);
-    series.push_back(perFrame(report["frames"], name, [&](const json& f) { return numberAt(f, {"gpu_ms_median", name.c_str()}); }));
+    series.push_back(perFrame(report["frames"], name, [&](const json& f) { return numberAt(f, {frameKey.c_str(), name.c_str()}); }));
   }
   PlotOptions options;
-  options.title = "GPU time per pass and frame (median over repetitions)";
+  options.title = counted ? measure + " per pass and frame (counted)" : "GPU time per pass and frame (median over repetitions)";
   options.xLabel = "frame (index in the capture)";
-  options.yLabel = "GPU time (ms)";
+  options.yLabel = counted ? measure : "GPU time (ms)";
   options.width = 1000;
   options.height = 420;
   markResets(report["frames"], noHistoryReason, options);
@@ -125,11 +167,16 @@ std::string metricsOverTimeHtml(const json& report, const std::string& noHistory
 }
 
 std::string passesHtml(const json& report) {
-  Table run{"passes-run", {"pass", "median ms", "min ms", "max ms", "timed runs"}, {}, true};
+  const std::string measure = measureOf(report);
+  const bool counted = measure != "gpu_ms";
+  Table run{"passes-run",
+            counted ? std::vector<std::string>{"pass", "median " + measure + " a frame", "min", "max", "frames"}
+                    : std::vector<std::string>{"pass", "median ms", "min ms", "max ms", "timed runs"},
+            {}, true};
+  auto number = [counted](double v) { return counted ? fmt::format("{:.0f}", v) : fmt::format("{:.4f}", v); };
   for (const auto& p : report["passes"]) {
-    const json& ms = p["gpu_ms"];
-    run.rows.push_back({escape(text(p["name"])), fmt::format("{:.4f}", ms["median"].get<double>()), fmt::format("{:.4f}", ms["min"].get<double>()),
-                        fmt::format("{:.4f}", ms["max"].get<double>()), std::to_string(ms["count"].get<int>())});
+    const PassFigures f = figuresOf(p, measure);
+    run.rows.push_back({escape(text(p["name"])), number(f.median), number(f.min), number(f.max), std::to_string(f.count)});
   }
   Table culled{"passes-culled", {"culled pass", "reason"}, {}, false};
   for (const auto& c : report["culled_passes"]) culled.rows.push_back({escape(text(c["name"])), escape(text(c["reason"]))});
