@@ -1,6 +1,10 @@
 #include "cli/cost_launcher.h"
 
+#include <sys/resource.h>
+
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 
@@ -28,6 +32,19 @@ std::optional<std::string> valgrindVersion() {
   std::string version(line);
   while (!version.empty() && (version.back() == '\n' || version.back() == '\r')) version.pop_back();
   return version;
+}
+
+// What the count cost: the child's CPU time (it runs shaders on one thread, so under load its wall
+// time grows and its CPU time does not), its wall time and the machine's load meanwhile.
+void printChildCost(double wallSeconds) {
+  struct rusage usage{};
+  ::getrusage(RUSAGE_CHILDREN, &usage);
+  auto seconds = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+  double load[1] = {0};
+  ::getloadavg(load, 1);
+  std::fprintf(stderr, "counted under callgrind: %.1f s CPU (%.1f user + %.1f sys), %.1f s wall, load average %.2f\n",
+               seconds(usage.ru_utime) + seconds(usage.ru_stime), seconds(usage.ru_utime), seconds(usage.ru_stime),
+               wallSeconds, load[0]);
 }
 
 }  // namespace
@@ -64,8 +81,10 @@ int runUnderCallgrind(CostMeasure measure) {
   const SpawnedProcess child = spawnProcess(argv, environment, "", "");
   if (child.pid < 0) throw std::runtime_error("cannot run valgrind: " + child.startError);
   forwardTerminationSignalsTo(child.pid);
+  const auto start = std::chrono::steady_clock::now();
   const ProcessResult result = waitForProcess(child.pid, std::chrono::hours(24 * 365));
   forwardTerminationSignalsTo(0);
+  printChildCost(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return result.signal ? 128 + result.signal : result.exitCode;
 }
 

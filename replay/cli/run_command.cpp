@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/cost_launcher.h"
+#include "cli/counted_run.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
 #include "options/progress.h"
@@ -77,39 +78,6 @@ class ShownFrames {
   std::vector<html::FrameImages> frames_;
 };
 
-// Counted cost inside callgrind: one counted run a frame after a warm-up, nothing of the tool's
-// running meanwhile (isolated timing); options that make no sense with counts are refused.
-void prepareCountedRun(const RunArgs& args, ReplayOptions& options) {
-  const char* measure = costMeasureName(args.cost);
-  if (args.repeat != 1)
-    throw InputError("", std::nullopt, "--repeat",
-                     fmt::format("--cost {} counts one run a frame (counts do not vary): --repeat must be 1", measure));
-  if (args.overlap)
-    throw InputError("", std::nullopt, "--overlap",
-                     fmt::format("--cost {} counts the device's thread while the tool waits: its workers must not run "
-                                 "meanwhile, so --overlap is refused",
-                                 measure));
-  if (args.validate)
-    throw InputError("", std::nullopt, "--validate",
-                     fmt::format("--cost {}: validate with a timed run (the validation layer under valgrind takes "
-                                 "minutes a frame, and its messages do not depend on the measure)",
-                                 measure));
-  const char* dumps = std::getenv(kCostDumpsVariable);
-  if (!dumps || !*dumps) throw std::runtime_error(std::string(kCostDumpsVariable) + " is not set under callgrind");
-  options.cost = args.cost;
-  options.costDumps = dumps;
-  options.timingMode = TimingMode::Isolated;
-  options.warmup = std::max(args.warmup, 1);
-}
-
-// Counts are lavapipe's work on this CPU; another device's work is not on it.
-void requireLavapipe(const DeviceInfo& device, CostMeasure cost) {
-  if (!device.isLavapipe)
-    throw InputError("", std::nullopt, "--device",
-                     fmt::format("--cost {} counts lavapipe's work on this CPU; device '{}' ({}) is not lavapipe",
-                                 costMeasureName(cost), device.name, device.driver));
-}
-
 ReplayOptions replayOptionsOf(const RunArgs& args, const Capture& capture) {
   ReplayOptions options(args.settings.resolve(capture));
   std::tie(options.frameBegin, options.frameEnd) = args.settings.frameRange(capture);
@@ -122,7 +90,7 @@ ReplayOptions replayOptionsOf(const RunArgs& args, const Capture& capture) {
   options.keepHistoryOnCut = args.keepHistoryOnCut;
   options.cameraJump = args.cameraJump;
   options.progress = progressCallback("replay", "frames");
-  if (args.cost != CostMeasure::Time) prepareCountedRun(args, options);
+  if (args.cost != CostMeasure::Time) prepareCountedReplay(args.cost, {args.repeat, args.overlap, args.validate}, options);
   return options;
 }
 
@@ -136,6 +104,7 @@ Replayed replay(const RunArgs& args, const Capture& capture, const ReplayOptions
   ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
   ContextScope context({args.device, args.validate, optionalExtensionsOf({options.settings})});
   if (args.cost != CostMeasure::Time) requireLavapipe(context.vk.info, args.cost);
+  context.vk.settleAfterSubmit = args.cost != CostMeasure::Time;
   RunResults run = runCapture(context.vk, capture, RunRequest(options), [&](const FrameOutput& frame) {
     if (!args.noImages) writeFrameImages(out.staging(), frame);
     for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);

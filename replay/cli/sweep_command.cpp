@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "cli/commands.h"
+#include "cli/cost_launcher.h"
+#include "cli/counted_run.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
 #include "options/progress.h"
@@ -39,6 +41,8 @@ struct SweepArgs {
   std::string out;
   std::string device;
   SweepRank rank = SweepRank::Rmse;
+  CostMeasure cost = CostMeasure::Time;
+  bool repeatGiven = false;  // --repeat on the command line (counted cost takes one run a frame)
 };
 
 SweepRow measure(VulkanContext& vk, const Capture& capture, const ReplayOptions& options, const SweepConfig& config,
@@ -62,6 +66,7 @@ std::vector<std::string> splitPresets(const std::string& text) {
 }
 
 int sweepCommand(const SweepArgs& args) {
+  if (args.cost != CostMeasure::Time && !CallgrindCounter::underCallgrind()) return runUnderCallgrind(args.cost);
   Capture capture = loadCapture(args.capture);
   SettingsOptions range;
   range.frames = args.frames;
@@ -88,16 +93,23 @@ int sweepCommand(const SweepArgs& args) {
   options.frameEnd = end;
   options.repeat = args.repeat;
   options.warmup = args.warmup;
+  if (args.cost != CostMeasure::Time) {
+    options.repeat = args.repeatGiven ? args.repeat : 1;
+    prepareCountedReplay(args.cost, {options.repeat, false, false}, options);
+  }
   OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out),
                       ResultKind::Sweep, {capture.folder});
 
-  SweepInfo info{capture.name, "", "", options.frameBegin, options.frameEnd, args.repeat, args.warmup, args.rank};
+  SweepInfo info{capture.name, "", "", costMeasureName(args.cost), options.frameBegin, options.frameEnd, options.repeat,
+                 options.warmup, args.rank};
   std::vector<SweepRow> rows;
   {
     std::vector<Settings> runs;
     for (const auto& config : configs) runs.push_back(config.settings);
     ContextScope context({args.device, false, optionalExtensionsOf(std::move(runs))});
     info.device = context.vk.info.name;
+    if (args.cost != CostMeasure::Time) requireLavapipe(context.vk.info, args.cost);
+    context.vk.settleAfterSubmit = args.cost != CostMeasure::Time;
     auto reference = completeReferences(context.vk, capture, begin, end, args.assignments);
     info.referenceKind = reference.kind;
     // A line per configuration, with the time left estimated from the ones done (cli/progress.h).
@@ -116,8 +128,10 @@ int sweepCommand(const SweepArgs& args) {
   writeText(out.staging() / "sweep.html", html::sweepPageHtml(info, rows));
   out.commit();
 
-  fmt::print("capture: {} (frames {}:{}), device: {}, error against the {} reference, {} timed run(s) per frame\n",
-             capture.name, options.frameBegin, options.frameEnd, info.device, info.referenceKind, args.repeat);
+  fmt::print("capture: {} (frames {}:{}), device: {}, error against the {} reference, {}\n", capture.name,
+             options.frameBegin, options.frameEnd, info.device, info.referenceKind,
+             args.cost == CostMeasure::Time ? fmt::format("{} timed run(s) per frame", args.repeat)
+                                            : fmt::format("{} counted under callgrind", costMeasureName(args.cost)));
   fmt::print("{}", sweepTable(rows));
   fmt::print("outputs: {}/ (sweep.json, sweep.csv, sweep.svg, sweep.html)\n", out.finalPath().string());
   return kExitOk;
@@ -145,7 +159,9 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
                   "settings file (as `aoreplay tune` writes): its technique is the default, its preset the default "
                   "preset, its keys go before --set, its radius scale applies to its technique");
   cmd->add_option("--frames", args->frames, "half-open frame range A:B (default: all)");
-  cmd->add_option("--repeat", args->repeat, "timed executions of each frame")->check(wholeIn(1, 100000))->capture_default_str();
+  auto* repeat = cmd->add_option("--repeat", args->repeat, "timed executions of each frame (counted cost: 1)")
+                     ->check(wholeIn(1, 100000))
+                     ->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(wholeIn(0, 100000))->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
   cmd->add_option("--device", args->device, kDeviceHelp);
@@ -157,7 +173,16 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
       ->default_str("rmse");
   cmd->footer(fmt::format("Keys of technique {} (aoreplay techniques lists every technique's):\n{}", help.name,
                           keyTable(help)));
-  handlers()["sweep"] = [args] { return sweepCommand(*args); };
+  cmd->add_option("--cost", args->cost,
+                  "time, or instructions or cycles: each configuration's passes counted under callgrind on lavapipe "
+                  "(run --cost; one run a frame)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, CostMeasure>{
+          {"time", CostMeasure::Time}, {"instructions", CostMeasure::Instructions}, {"cycles", CostMeasure::Cycles}}))
+      ->default_str("time");
+  handlers()["sweep"] = [args, repeat] {
+    args->repeatGiven = repeat->count() > 0;
+    return sweepCommand(*args);
+  };
 }
 
 }  // namespace aor::cli

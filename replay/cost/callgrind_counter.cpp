@@ -165,7 +165,10 @@ EventCounts CallgrindCounter::end(const std::string& name) {
   CALLGRIND_TOGGLE_COLLECT;
   CALLGRIND_STOP_INSTRUMENTATION;
   CALLGRIND_DUMP_STATS_AT(name.c_str());
-  const std::filesystem::path dump = outFile_.string() + "." + std::to_string(++dumps_);
+  // Callgrind numbers the dumps of a process 1, 2, ...: one count for every counter of the process
+  // (a sweep replays several configurations, each with its own).
+  static int dumps = 0;
+  const std::filesystem::path dump = outFile_.string() + "." + std::to_string(++dumps);
   std::ifstream in(dump);
   if (!in) throw std::runtime_error("callgrind wrote no dump " + dump.string());
   std::stringstream text;

@@ -57,7 +57,6 @@ class CallgrindCounter {
 
  private:
   std::filesystem::path outFile_;
-  int dumps_ = 0;
 };
 
 // What the counts depend on beyond the build: the processor as the counted process sees it

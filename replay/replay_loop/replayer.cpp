@@ -346,6 +346,7 @@ class Replay {
     result_.settings = settings_;
     result_.timingMode = resolveTimingMode(options_.timingMode, vk_.info);
     result_.noHistoryReason = noHistoryReason(settings_);
+    result_.cost = options_.cost;
     setupStart_ = Clock::now();  // the origin of every start time in the result
     const Technique& technique = settings_.technique();
     if (technique.prepare) state_ = technique.prepare(ReplaySetup{capture_, settings_, &vk_});

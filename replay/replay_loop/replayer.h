@@ -98,6 +98,7 @@ struct ReplayResult {
   DeviceInfo device;
   Settings settings;
   TimingMode timingMode = TimingMode::Overlapped;  // the mode the replay ran in (never Auto)
+  CostMeasure cost = CostMeasure::Time;            // passes[].counts hold the measure's events unless Time
   int chunkFrames = 0;                             // Isolated: frames preloaded per chunk
   std::vector<FrameRecord> frames;
   // The reset reason every frame gets when the technique keeps no history under these settings

@@ -418,9 +418,9 @@ std::string header(const Comparison& c, const CompareOptions& options) {
                                  plural(c.baselineRuns, "run"), c.newSource.empty() ? "-" : c.newSource,
                                  plural(c.newRuns, "run"));
   if (c.level == Level::Counts)
-    text += fmt::format("values: {} counted under callgrind, exact: a change of x{:.4g} or more either way is a "
+    text += fmt::format("values: {} counted under callgrind: a change of x{:.4g} or more either way is a "
                         "verdict, without statistics\n",
-                        c.measure, 1.0 + options.minEffectCounts);
+                        c.measure, 1.0 + countsMinEffect(c.measure, options));
   else if (c.level == Level::Runs)
     text += fmt::format("values: one per run (its median; the total's: its median per-repetition sum), {} a side "
                         "at the least for a verdict over {}\n",
@@ -482,7 +482,8 @@ nlohmann::json comparisonJson(const Comparison& c, const CompareOptions& options
           {"options", {{"alpha", options.alpha}, {"min_effect", options.minEffect},
                        {"min_effect_ms", options.minEffectMs}, {"spread_multiple", options.spreadMultiple},
                        {"judge_host_copies", options.judgeHostCopies}, {"fail_on_unknown", options.failOnUnknown},
-                       {"min_effect_counts", options.minEffectCounts}}}};
+                       {"min_effect_counts", c.level == Level::Counts ? nlohmann::json(countsMinEffect(c.measure, options))
+                                                                       : nlohmann::json(nullptr)}}}};
 }
 
 }  // namespace aor

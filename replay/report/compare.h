@@ -62,13 +62,21 @@ struct CompareOptions {
   double spreadMultiple = 2.0;  // ...and at least this many spreads (robust, of log values) of the noisier side
   double minEffectMs = 0.001;   // ...and at least this absolute change: microsecond passes shift by
                                 // a fraction of a microsecond between processes (compare_README.md)
-  double minEffectCounts = 0.001;  // counts: the smallest change that is a verdict (no statistics)
+  // Counts: the smallest change that is a verdict (no statistics); unset: the measure's default
+  // (countsMinEffect).
+  std::optional<double> minEffectCounts;
   bool judgeHostCopies = false; // host copies vary with host memory placement from process to process
   bool failOnUnknown = false;   // a judged `unknown` fails the comparison too
 };
 
 enum class Verdict { Same, Faster, Slower, Unknown };
 const char* verdictText(Verdict v);
+
+// The default smallest change of a counted measure: instructions are exact (x1.001); cycles come
+// from a cache simulation that other threads' allocations perturb by up to 7e-4 of a pass (measured,
+// bench/RESULTS.md "Counted cost"), so x1.01.
+double countsMinEffect(const std::string& measure);
+double countsMinEffect(const std::string& measure, const CompareOptions& options);
 
 // What the test's values are: one per run (each side has 2 runs or more), or, with a single run on
 // a side, the runs' own samples (frames x repetitions), which cannot see run-to-run variation.

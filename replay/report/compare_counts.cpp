@@ -85,6 +85,12 @@ std::vector<std::pair<std::string, std::pair<bool, std::vector<double>>>> runVal
 
 }  // namespace
 
+double countsMinEffect(const std::string& measure) { return measure == "cycles" ? 0.01 : 0.001; }
+
+double countsMinEffect(const std::string& measure, const CompareOptions& options) {
+  return options.minEffectCounts.value_or(countsMinEffect(measure));
+}
+
 RunMeasure measureOfReport(const nlohmann::json& report, const fs::path& path) {
   RunMeasure m;
   if (!report.contains("cost")) return m;
@@ -173,10 +179,11 @@ Comparison compareCounts(const SideTimings& baseline, const SideTimings& candida
     p.baselineMedian = sideValue(p.baselineValues);
     p.newMedian = sideValue(p.newValues);
     p.logRatio = std::log(p.newMedian) - std::log(p.baselineMedian);
-    p.effectFloor = p.threshold = std::log1p(options.minEffectCounts);
+    const double minEffect = countsMinEffect(measure, options);
+    p.effectFloor = p.threshold = std::log1p(minEffect);
     p.pValue = p.pHolm = std::abs(p.logRatio) >= p.threshold ? 0.0 : 1.0;
     p.exact = true;
-    p.verdict = verdictOf(p.ratio(), options.minEffectCounts);
+    p.verdict = verdictOf(p.ratio(), minEffect);
     c.passes.push_back(std::move(p));
   }
   c.judgedNames = size_t(std::count_if(c.passes.begin(), c.passes.end(), [](const auto& p) { return p.judged; }));

@@ -24,18 +24,6 @@ nlohmann::json summaryJson(const Summary& s) {
   return {{"min", s.min}, {"median", s.median}, {"max", s.max}, {"mean", s.mean}, {"count", s.count}};
 }
 
-// Counted cost: each pass's value per frame (frames in order), under the run's measure.
-std::vector<std::pair<std::string, std::vector<double>>> countsByPass(const ReplayResult& result, CostMeasure measure) {
-  std::vector<std::pair<std::string, std::vector<double>>> passes;
-  for (const auto& frame : result.frames)
-    for (const auto& p : frame.passes) {
-      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& e) { return e.first == p.name; });
-      if (it == passes.end()) it = passes.insert(passes.end(), {p.name, {}});
-      it->second.push_back(costOf(measure, p.counts));
-    }
-  return passes;
-}
-
 double sumOf(const std::vector<double>& values) { return std::accumulate(values.begin(), values.end(), 0.0); }
 
 // What counts depend on: two runs' counts compare exactly only when all of it is the same.

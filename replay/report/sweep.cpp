@@ -1,12 +1,14 @@
 #include "report/sweep.h"
 
 #include <algorithm>
+#include <numeric>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "core/input_error.h"
+#include "core/pass_names.h"
 #include "core/stats.h"
 #include "report/run_outputs.h"
 #include "report/svg_plot.h"
@@ -41,6 +43,13 @@ GridAxis parseAxis(const std::string& text) {
 }
 
 
+
+bool counted(const SweepRow& row) { return row.measure != "time"; }
+// What a cost column is called after: "ms", or the counted measure.
+std::string unitOf(const SweepRow& row) { return counted(row) ? row.measure : "ms"; }
+std::string costText(const SweepRow& row, double value, size_t width) {
+  return counted(row) ? fmt::format("{:>{}.0f}", value, width) : fmt::format("{:>{}.3f}", value, width);
+}
 
 double passMs(const SweepRow& row, const std::string& name) {
   for (const auto& [n, ms] : row.passMs)
@@ -170,13 +179,18 @@ nlohmann::json sweepJson(const SweepInfo& info, const std::vector<SweepRow>& row
   out["repeat"] = info.repeat;
   out["warmup"] = info.warmup;
   out["rank_by"] = sweepRankName(info.rank);
-  out["time"] = "GPU ms per frame: per pass, the median over frames x repeats; total = the median over frames x repeats of the sum of the compute passes in that repeat (upload and read-back copies listed, not counted)";
+  const bool isCounted = info.measure != "time";
+  if (isCounted)
+    out["cost"] = info.measure + " counted under callgrind (run --cost): per pass, the sum over the frames; total = the compute passes' sum (upload and read-back copies listed, not counted)";
+  else
+    out["time"] = "GPU ms per frame: per pass, the median over frames x repeats; total = the median over frames x repeats of the sum of the compute passes in that repeat (upload and read-back copies listed, not counted)";
+  const std::string passesKey = isCounted ? info.measure : "gpu_ms_median", totalKey = isCounted ? info.measure + "_total" : "gpu_ms_total";
   nlohmann::json list = nlohmann::json::array();
   for (const auto& row : rows) {
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& [name, ms] : row.passMs) passes[name] = ms;
     list.push_back({{"configuration", row.config.name}, {"settings", row.config.settings.toJson()},
-                    {"gpu_ms_median", passes}, {"gpu_ms_total", row.totalMs}, {"rmse", row.rmse},
+                    {passesKey, passes}, {totalKey, row.totalMs}, {"rmse", row.rmse},
                     {"ssim", row.ssim}, {"halo_band_rmse", row.haloRmse}, {"error", row.error}, {"pareto", row.pareto}});
     if (row.sppMax > 0) list.back()["accumulated_spp"] = {row.sppMin, row.sppMax};
   }
@@ -193,14 +207,16 @@ std::string sweepCsv(const std::vector<SweepRow>& rows) {
       if (std::none_of(keys.begin(), keys.end(), [&](const Parameter* k) { return k->key == p.key; })) keys.push_back(&p);
   std::string csv = "configuration,technique";
   for (const auto* k : keys) csv += "," + k->key;
-  for (const auto& p : passes) csv += fmt::format(",{}_ms", p);
-  csv += ",total_ms,rmse,ssim,pareto\n";
+  const std::string unit = rows.empty() ? "ms" : unitOf(rows.front());
+  for (const auto& p : passes) csv += fmt::format(",{}_{}", p, unit);
+  csv += fmt::format(",total_{},rmse,ssim,pareto\n", unit);
   for (const auto& row : rows) {
     const auto& s = row.config.settings;
     csv += fmt::format("{},{}", csvField(row.config.name), s.technique().name);
     for (const auto* k : keys) csv += "," + (s.has(k->key) ? csvField(s.text(k->key)) : std::string());
-    for (const auto& p : passes) csv += fmt::format(",{:.6f}", passMs(row, p));
-    csv += fmt::format(",{:.6f},{:.6f},{:.6f},{}\n", row.totalMs, row.rmse, row.ssim, row.pareto ? 1 : 0);
+    auto number = [&](double v) { return counted(row) ? fmt::format("{:.0f}", v) : fmt::format("{:.6f}", v); };
+    for (const auto& p : passes) csv += "," + number(passMs(row, p));
+    csv += fmt::format(",{},{:.6f},{:.6f},{}\n", number(row.totalMs), row.rmse, row.ssim, row.pareto ? 1 : 0);
   }
   return csv;
 }
@@ -225,8 +241,8 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
     // A ray-traced technique's cost is its samples per pixel: they go with its point and the x axis.
     std::string spp = row.samplesLabel();
     all.labels.push_back(spp.empty() ? std::to_string(i + 1) : fmt::format("{} ({})", i + 1, spp));
-    all.tooltips.push_back(fmt::format("{}: {}{}, {:.4g} ms, RMSE {:.5g}, halo-band RMSE {:.5g}{}", i + 1, row.config.name,
-                                       spp.empty() ? "" : ", " + spp, row.totalMs, row.rmse, row.haloRmse,
+    all.tooltips.push_back(fmt::format("{}: {}{}, {:.4g} {}, RMSE {:.5g}, halo-band RMSE {:.5g}{}", i + 1, row.config.name,
+                                       spp.empty() ? "" : ", " + spp, row.totalMs, unitOf(row), row.rmse, row.haloRmse,
                                        row.pareto ? " (Pareto-optimal)" : ""));
     all.highlighted.push_back(row.pareto);
     options.key.push_back(fmt::format("{} = {}{}", i + 1, row.config.name, spp.empty() ? "" : " (" + spp + " accumulated)"));
@@ -241,9 +257,11 @@ std::string sweepSvg(const SweepInfo& info, const std::vector<SweepRow>& rows) {
     pareto.y.push_back(rankedError(*row, info.rank));
   }
   const bool band = info.rank == SweepRank::HaloBand;
-  options.title = fmt::format("{}: {} vs {} reference against GPU time", info.capture, band ? "halo-band RMSE" : "RMSE",
-                              info.referenceKind);
-  options.xLabel = "GPU time per frame (ms, sum of pass medians)";
+  const bool isCounted = info.measure != "time";
+  options.title = fmt::format("{}: {} vs {} reference against {}", info.capture, band ? "halo-band RMSE" : "RMSE",
+                              info.referenceKind, isCounted ? info.measure : "GPU time");
+  options.xLabel = isCounted ? info.measure + " over the frames (counted under callgrind, compute passes)"
+                             : "GPU time per frame (ms, sum of pass medians)";
   if (!sppNotes.empty()) options.xLabel += fmt::format("; samples per pixel {}", fmt::join(sppNotes, ", "));
   options.yLabel = band ? "halo-band RMSE (visibility, 0-1; the background behind nearer silhouettes)"
                        : "RMSE (visibility, 0-1; sky masked)";
@@ -257,8 +275,11 @@ namespace {
 // because it was not there).
 std::string msCell(const SweepRow& row, const std::string& pass, size_t width) {
   const bool ran = std::any_of(row.passMs.begin(), row.passMs.end(), [&](const auto& e) { return e.first == pass; });
-  return ran ? fmt::format("{:>{}.3f}", passMs(row, pass), width) : fmt::format("{:>{}}", "-", width);
+  return ran ? costText(row, passMs(row, pass), width) : fmt::format("{:>{}}", "-", width);
 }
+
+// Timed columns are 10 wide; counted ones 18 (an instruction count runs to 10-11 digits).
+size_t costWidth(const std::vector<const SweepRow*>& rows) { return rows.empty() || !counted(*rows.front()) ? 10 : 18; }
 
 size_t nameWidth(const std::vector<const SweepRow*>& rows) {
   size_t width = 13;
@@ -282,13 +303,14 @@ std::string passTable(const std::vector<const SweepRow*>& rows) {
   const std::vector<std::string> passes = passNames(rows);
   std::string table = fmt::format("{:<{}}", "configuration", width);
   for (const auto& p : passes) table += fmt::format(" {:>{}}", p, std::max<size_t>(p.size(), 8));
-  table += fmt::format(" {:>10} {:>9} {:>9} {:>7} {:>6}", "total ms", "RMSE", "halo RMSE", "SSIM", "pareto");
+  const size_t cost = costWidth(rows);
+  table += fmt::format(" {:>{}} {:>9} {:>9} {:>7} {:>6}", "total " + unitOf(*rows.front()), cost, "RMSE", "halo RMSE", "SSIM", "pareto");
   table += "\n";
   for (const auto* row : rows) {
     table += fmt::format("{:<{}}", row->config.name, width);
-    for (const auto& p : passes) table += " " + msCell(*row, p, std::max<size_t>(p.size(), 8));
-    table += fmt::format(" {:>10.3f} {:>9.5f} {:>9.5f} {:>7.4f} {:>6}", row->totalMs, row->rmse, row->haloRmse, row->ssim,
-                         row->pareto ? "*" : "");
+    for (const auto& p : passes) table += " " + msCell(*row, p, std::max<size_t>(p.size(), cost == 10 ? 8 : 12));
+    table += fmt::format(" {} {:>9.5f} {:>9.5f} {:>7.4f} {:>6}", costText(*row, row->totalMs, cost), row->rmse, row->haloRmse,
+                         row->ssim, row->pareto ? "*" : "");
     table += "\n";
   }
   return table;
@@ -298,12 +320,14 @@ constexpr size_t kTerminalColumns = 120;
 
 std::string totalsTable(const std::vector<const SweepRow*>& rows) {
   const size_t width = nameWidth(rows);
-  std::string table = fmt::format("{:>3} {:<{}} {:>10} {:>9} {:>9} {:>10} {:>7} {:>6}\n", "#", "configuration", width,
-                                  "total ms", "RMSE", "halo RMSE", "halo bias", "SSIM", "pareto");
+  const size_t cost = costWidth(rows);
+  std::string table = fmt::format("{:>3} {:<{}} {:>{}} {:>9} {:>9} {:>10} {:>7} {:>6}\n", "#", "configuration", width,
+                                  "total " + unitOf(*rows.front()), cost, "RMSE", "halo RMSE", "halo bias", "SSIM", "pareto");
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRow* row = rows[i];
-    table += fmt::format("{:>3} {:<{}} {:>10.3f} {:>9.5f} {:>9.5f} {:>+10.4f} {:>7.4f} {:>6}\n", i + 1, row->config.name,
-                         width, row->totalMs, row->rmse, row->haloRmse, row->haloBias, row->ssim, row->pareto ? "*" : "");
+    table += fmt::format("{:>3} {:<{}} {} {:>9.5f} {:>9.5f} {:>+10.4f} {:>7.4f} {:>6}\n", i + 1, row->config.name, width,
+                         costText(*row, row->totalMs, cost), row->rmse, row->haloRmse, row->haloBias, row->ssim,
+                         row->pareto ? "*" : "");
   }
   return table;
 }
@@ -314,16 +338,17 @@ std::string techniquePassTable(const std::vector<const SweepRow*>& rows, const s
   const std::vector<std::string> passes = passNames(rows);
   size_t width = 4;
   for (const auto& p : passes) width = std::max(width, p.size());
-  const size_t perBlock = std::max<size_t>(1, (kTerminalColumns - width) / 10);
+  const size_t cell = costWidth(rows) == 10 ? 9 : 14;
+  const size_t perBlock = std::max<size_t>(1, (kTerminalColumns - width) / (cell + 1));
   std::string table;
   for (size_t first = 0; first < rows.size(); first += perBlock) {
     const size_t last = std::min(rows.size(), first + perBlock);
     table += fmt::format("{:<{}}", "pass", width);
-    for (size_t c = first; c < last; ++c) table += fmt::format(" {:>9}", fmt::format("#{}", numbers[c]));
+    for (size_t c = first; c < last; ++c) table += fmt::format(" {:>{}}", fmt::format("#{}", numbers[c]), cell);
     table += "\n";
     for (const auto& p : passes) {
       table += fmt::format("{:<{}}", p, width);
-      for (size_t c = first; c < last; ++c) table += " " + msCell(*rows[c], p, 9);
+      for (size_t c = first; c < last; ++c) table += " " + msCell(*rows[c], p, cell);
       table += "\n";
     }
   }
@@ -351,7 +376,9 @@ std::string sweepTable(const std::vector<SweepRow>& rows) {
     std::vector<size_t> numbers;
     for (size_t i = 0; i < all.size(); ++i)
       if (all[i]->config.settings.technique().name == technique) own.push_back(all[i]), numbers.push_back(i + 1);
-    text += fmt::format("\n{}: GPU ms per pass and configuration (#, median per frame)\n", technique) +
+    text += (counted(*own.front()) ? fmt::format("\n{}: {} per pass and configuration (#, over the frames)\n", technique,
+                                                 own.front()->measure)
+                                   : fmt::format("\n{}: GPU ms per pass and configuration (#, median per frame)\n", technique)) +
             techniquePassTable(own, numbers);
   }
   return text;
@@ -365,8 +392,16 @@ std::vector<std::string> sweepPassNames(const std::vector<SweepRow>& rows) {
 
 SweepRow sweepRow(const SweepConfig& config, const RunResults& results) {
   SweepRow row{config};
-  for (const auto& [name, durations] : samplesByPass(results.replay)) row.passMs.emplace_back(name, summarize(durations).median);
-  row.totalMs = totalMedianMs(timedFrames(results.replay));
+  if (results.replay.cost == CostMeasure::Time) {
+    for (const auto& [name, durations] : samplesByPass(results.replay)) row.passMs.emplace_back(name, summarize(durations).median);
+    row.totalMs = totalMedianMs(timedFrames(results.replay));
+  } else {
+    row.measure = costMeasureName(results.replay.cost);
+    for (const auto& [name, perFrame] : countsByPass(results.replay, results.replay.cost)) {
+      row.passMs.emplace_back(name, std::accumulate(perFrame.begin(), perFrame.end(), 0.0));
+      if (!isHostCopyPass(name)) row.totalMs += row.passMs.back().second;
+    }
+  }
   row.error = results.analysis.summaryJson()["error"];
   row.rmse = row.error["rmse"].get<double>();
   row.ssim = row.error["ssim"].get<double>();

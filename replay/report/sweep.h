@@ -48,8 +48,11 @@ SweepPlan expandSweep(const SweepRequest& request, const SettingsResolver& resol
 
 struct SweepRow {
   SweepConfig config;
+  // With counted cost (measure "instructions" or "cycles") passMs and totalMs hold counts over the
+  // frames: each pass's sum, and the compute passes' sum.
+  std::string measure = "time";
   std::vector<std::pair<std::string, double>> passMs;  // per live pass, median over frames x repeats
-  double totalMs = 0;                                  // totalMedianMs (report/gpu_total.h)
+  double totalMs = 0;                                  // totalMedianMs (run/gpu_total.h)
   nlohmann::json error;                                // ErrorAnalysis::summaryJson()
   double rmse = 0, ssim = 0;
   double haloRmse = 0, haloBias = 0;  // over the halo band (error.halo_band; 0 pixels: both 0)
@@ -75,6 +78,7 @@ void markPareto(std::vector<SweepRow>& rows, SweepRank rank = SweepRank::Rmse);
 
 struct SweepInfo {
   std::string capture, device, referenceKind;  // referenceKind: "ray-traced" or "screen-space"
+  std::string measure = "time";                // or a counted one: "instructions", "cycles"
   int frameBegin = 0, frameEnd = 0, repeat = 1, warmup = 0;
   SweepRank rank = SweepRank::Rmse;
 };

@@ -284,7 +284,7 @@ void exactChanges(const SeriesHistory& h, const std::vector<std::string>& judged
       double largest = 0;
       for (size_t k = 0; k < judged.size(); ++k) {
         change.passes.push_back(exactShift(judged[k], h.commits[*previous].runs.size(), h.commits[c].runs.size(), from[k],
-                                           to[k], o.minEffectCounts));
+                                           to[k], o.minEffectCounts.value_or(countsMinEffect(h.key.measure))));
         double move = std::abs(std::log(change.passes.back().ratio));
         if (change.passes.back().changed && move > largest) largest = move, change.slower = to[k] > from[k];
       }

@@ -21,7 +21,9 @@ struct TrendOptions {
   size_t minRuns = 4;       // runs a side at least, else the boundary is not tested
   double alpha = 0.05;      // false-alarm rate per series and segment
   double minEffect = 0.02;  // smallest shift that counts, as a ratio either way (x1.02 or x1/1.02)
-  double minEffectCounts = 0.001;  // a counted series': the smallest change that counts (no statistics)
+  // A counted series': the smallest change that counts (no statistics); unset: the measure's
+  // default (report/compare.h countsMinEffect: x1.001 instructions, x1.01 cycles).
+  std::optional<double> minEffectCounts;
   double confidence = 0.95; // of the shift's interval
 };
 

@@ -29,8 +29,8 @@ std::string changeText(const SeriesHistory& h, const ChangePoint& c, const Trend
     for (const auto& p : c.passes)
       out += fmt::format("    {:<22} {:>6} {:>16.0f} {:>16.0f} {:>10}{}\n", p.pass, fmt::format("{}+{}", p.before, p.after),
                          p.beforeMedianMs, p.afterMedianMs, fmt::format("x{:.5f}", p.ratio), p.changed ? "  changed" : "");
-    return out + fmt::format("    ({} counted under callgrind, exact: changed at x{:.4g} or more either way)\n",
-                             h.key.measure, 1 + o.minEffectCounts);
+    return out + fmt::format("    ({} counted under callgrind: changed at x{:.4g} or more either way)\n",
+                             h.key.measure, 1 + o.minEffectCounts.value_or(countsMinEffect(h.key.measure)));
   }
   out += fmt::format("    {:<22} {:>6} {:>10} {:>10} {:>8} {:>19} {:>10} {:>10}\n", "pass", "runs", "before ms",
                      "after ms", "shift", "interval", "p", "p (Holm)");
@@ -50,7 +50,7 @@ std::string trendTable(const std::vector<TrendResult>& results, const TrendOptio
     out += fmt::format("series {} {}: {} commits, {} runs\n", shortSha(h.fingerprint), h.key.label(), h.commits.size(),
                        r.trend.runs);
     if (r.trend.changes.empty() && h.key.counted()) {
-      out += fmt::format("  no change ({} counted, exact; minimum effect x{:.4g})\n", h.key.measure, 1 + o.minEffectCounts);
+      out += fmt::format("  no change ({} counted under callgrind; minimum effect x{:.4g})\n", h.key.measure, 1 + o.minEffectCounts.value_or(countsMinEffect(h.key.measure)));
       continue;
     }
     if (r.trend.changes.empty()) {

@@ -81,6 +81,17 @@ std::vector<TimedFrame> timedFrames(const ReplayResult& result) {
   return frames;
 }
 
+std::vector<std::pair<std::string, std::vector<double>>> countsByPass(const ReplayResult& result, CostMeasure measure) {
+  std::vector<std::pair<std::string, std::vector<double>>> passes;
+  for (const auto& frame : result.frames)
+    for (const auto& p : frame.passes) {
+      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& e) { return e.first == p.name; });
+      if (it == passes.end()) it = passes.insert(passes.end(), {p.name, {}});
+      it->second.push_back(costOf(measure, p.counts));
+    }
+  return passes;
+}
+
 References capturedReferences(const Capture& capture, int begin, int end) {
   References references;
   for (int i = begin; i < end; ++i)

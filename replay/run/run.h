@@ -42,6 +42,8 @@ struct RunResults {
 
 // Per pass name, every timed duration over all frames and repetitions, in first-seen order.
 std::vector<std::pair<std::string, std::vector<double>>> samplesByPass(const ReplayResult& result);
+// Counted cost: per pass name, its count in each frame (frames in order), in first-seen order.
+std::vector<std::pair<std::string, std::vector<double>>> countsByPass(const ReplayResult& result, CostMeasure measure);
 // A frame's pass durations as the totals of gpu_total.h take them.
 TimedFrame timedFrame(const FrameRecord& frame);
 std::vector<TimedFrame> timedFrames(const ReplayResult& result);

@@ -1,5 +1,7 @@
 #include "vk/context.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
@@ -293,6 +295,12 @@ void submitAndWait(const VulkanContext& ctx, VkCommandBuffer cmd, VkFence fence)
   submit.pCommandBufferInfos = &cmdInfo;
   VK_CHECK(vkQueueSubmit2(ctx.queue, 1, &submit, fence));
   VK_CHECK(vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX));
+  // Counted cost: let a CPU device's queue thread finish what follows the fence's signal before
+  // this thread goes on, so the two never race for the heap (their order moves the counts).
+  if (ctx.settleAfterSubmit) {
+    struct timespec settle{0, 2'000'000};
+    nanosleep(&settle, nullptr);
+  }
   VK_CHECK(vkResetFences(ctx.device, 1, &fence));
 }
 

@@ -63,6 +63,9 @@ struct VulkanContext {
   // Set while a replay counts its passes' work (vk/op_counter.h): pipelines come from the counting
   // build and every dispatch gets a counter slot. Owned by whoever set it.
   OpCounter* opCounter = nullptr;
+  // Counted cost (cost/callgrind_counter.h): after every fence wait, 2 ms for a CPU device's queue
+  // thread to finish what follows the signal, so it never races this thread for the heap.
+  bool settleAfterSubmit = false;
 
   // Validation messages (warnings and errors); any one fails a --validate run.
   std::mutex messageMutex;

@@ -40,9 +40,14 @@ std::string configurationsTable(const std::vector<SweepRow>& all, const std::str
   auto keys = details ? keyNames(rows) : std::vector<std::string>{};
   Table table{technique.empty() ? "configurations" : "configurations-" + technique, {"#", "configuration", "technique"}, {}, true};
   for (const auto& k : keys) table.header.push_back(k);
-  for (const auto& p : passes) table.header.push_back(p + " ms");
-  if (totals)
-    for (const char* h : {"total ms", "RMSE", "halo-band RMSE", "halo-band bias", "SSIM", "Pareto"}) table.header.push_back(h);
+  const bool counted = !rows.empty() && rows.front().measure != "time";
+  const std::string unit = counted ? rows.front().measure : "ms";
+  const char* costFormat = counted ? "{:.0f}" : "{:.4f}";
+  for (const auto& p : passes) table.header.push_back(p + " " + unit);
+  if (totals) {
+    table.header.push_back("total " + unit);
+    for (const char* h : {"RMSE", "halo-band RMSE", "halo-band bias", "SSIM", "Pareto"}) table.header.push_back(h);
+  }
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRow& row = rows[i];
     const Settings& s = row.config.settings;
@@ -51,10 +56,10 @@ std::string configurationsTable(const std::vector<SweepRow>& all, const std::str
     for (const auto& k : keys) cells.push_back(s.has(k) ? escape(s.text(k)) : "");
     for (const auto& p : passes) {
       auto it = std::find_if(row.passMs.begin(), row.passMs.end(), [&](const auto& e) { return e.first == p; });
-      cells.push_back(it == row.passMs.end() ? "" : numberCell(it->second, "{:.4f}"));
+      cells.push_back(it == row.passMs.end() ? "" : numberCell(it->second, costFormat));
     }
     if (totals) {
-      cells.push_back(numberCell(row.totalMs, "{:.4f}"));
+      cells.push_back(numberCell(row.totalMs, costFormat));
       cells.push_back(numberCell(row.rmse, "{:.5f}"));
       cells.push_back(numberCell(row.haloRmse, "{:.5f}"));
       cells.push_back(numberCell(row.haloBias, "{:+.4f}"));

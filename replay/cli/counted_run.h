@@ -1,0 +1,23 @@
+#pragma once
+// What `run` and `sweep` do differently inside callgrind (--cost instructions|cycles): one counted
+// run a frame after a warm-up, nothing of the tool's running meanwhile, and the options that make
+// no sense with counts refused.
+#include "cost/callgrind_counter.h"
+#include "replay_loop/replayer.h"
+#include "vk/context.h"
+
+namespace aor::cli {
+
+struct TimedOnlyOptions {
+  int repeat = 1;
+  bool overlap = false;
+  bool validate = false;
+};
+
+// Throws InputError naming --repeat (other than 1), --overlap or --validate; sets the replay's
+// measure, dump file, isolated timing and at least one warm-up run.
+void prepareCountedReplay(CostMeasure cost, const TimedOnlyOptions& given, ReplayOptions& options);
+// Counts are lavapipe's work on this CPU: another device is InputError (--device).
+void requireLavapipe(const DeviceInfo& device, CostMeasure cost);
+
+}  // namespace aor::cli
