@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -31,6 +32,13 @@ void prepareCountedReplay(CostMeasure cost, const TimedOnlyOptions& given, Repla
   options.costDumps = dumps;
   options.timingMode = TimingMode::Isolated;
   options.warmup = std::max(options.warmup, 1);
+}
+
+void addCostOption(CLI::App& command, CostMeasure& cost, const std::string& help) {
+  command.add_option("--cost", cost, help)
+      ->transform(CLI::CheckedTransformer(std::map<std::string, CostMeasure>{
+          {"time", CostMeasure::Time}, {"instructions", CostMeasure::Instructions}, {"cycles", CostMeasure::Cycles}}))
+      ->default_str("time");
 }
 
 void requireLavapipe(const DeviceInfo& device, CostMeasure cost) {

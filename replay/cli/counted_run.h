@@ -2,6 +2,8 @@
 // What `run` and `sweep` do differently inside callgrind (--cost instructions|cycles): one counted
 // run a frame after a warm-up, nothing of the tool's running meanwhile, and the options that make
 // no sense with counts refused.
+#include <CLI/CLI.hpp>
+
 #include "cost/callgrind_counter.h"
 #include "replay_loop/replayer.h"
 #include "vk/context.h"
@@ -17,6 +19,8 @@ struct TimedOnlyOptions {
 // Throws InputError naming --repeat (other than 1), --overlap or --validate; sets the replay's
 // measure, dump file, isolated timing and at least one warm-up run.
 void prepareCountedReplay(CostMeasure cost, const TimedOnlyOptions& given, ReplayOptions& options);
+// --cost time|instructions|cycles, with `help` after the choices.
+void addCostOption(CLI::App& command, CostMeasure& cost, const std::string& help);
 // Counts are lavapipe's work on this CPU: another device is InputError (--device).
 void requireLavapipe(const DeviceInfo& device, CostMeasure cost);
 

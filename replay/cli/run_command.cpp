@@ -220,12 +220,9 @@ void registerRunCommand(CLI::App& app, const Technique& help) {
                   "reset history when the camera moves more than this fraction of the median view distance (0 = off)")
       ->check(numberIn(0.0, 1e12))
       ->capture_default_str();
-  cmd->add_option("--cost", args->cost,
-                  "time: GPU timestamps; instructions or cycles: each pass's work counted under valgrind's callgrind "
-                  "on lavapipe (exact, 20-100x slower; cycles from its cache simulation)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, CostMeasure>{
-          {"time", CostMeasure::Time}, {"instructions", CostMeasure::Instructions}, {"cycles", CostMeasure::Cycles}}))
-      ->default_str("time");
+  addCostOption(*cmd, args->cost,
+                "time: GPU timestamps; instructions or cycles: each pass's work counted under valgrind's callgrind "
+                "on lavapipe (instructions exact, 20-100x slower; cycles from its cache simulation)");
   cmd->add_flag("--test-keep-history-on-cut", args->keepHistoryOnCut,
                 "TEST ONLY: do not reset history on a cut (proves the cut check can fail)")
       ->group("");

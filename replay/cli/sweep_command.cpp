@@ -173,12 +173,9 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
       ->default_str("rmse");
   cmd->footer(fmt::format("Keys of technique {} (aoreplay techniques lists every technique's):\n{}", help.name,
                           keyTable(help)));
-  cmd->add_option("--cost", args->cost,
-                  "time, or instructions or cycles: each configuration's passes counted under callgrind on lavapipe "
-                  "(run --cost; one run a frame)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, CostMeasure>{
-          {"time", CostMeasure::Time}, {"instructions", CostMeasure::Instructions}, {"cycles", CostMeasure::Cycles}}))
-      ->default_str("time");
+  addCostOption(*cmd, args->cost,
+                "time, or instructions or cycles: each configuration's passes counted under callgrind on lavapipe "
+                "(run --cost; one run a frame)");
   handlers()["sweep"] = [args, repeat] {
     args->repeatGiven = repeat->count() > 0;
     return sweepCommand(*args);

@@ -1,8 +1,6 @@
 // `run --cost instructions|cycles`: the same counts for every pass in separate processes, more work
 // counted as more, compare judging counts exactly, and the refusals. Each counted run re-executes
 // aoreplay under valgrind's callgrind (a few seconds for a 1-frame 64x36 capture).
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 
@@ -10,29 +8,13 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
+#include "scratch_folder.h"
 
 namespace aor::test {
 namespace {
 namespace fs = std::filesystem;
 
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
-
-// This process's scratch folder, removed when the test program ends (tests run one a process).
-const fs::path& scratchRoot() {
-  static const struct Root {
-    fs::path path = fs::path(testing::TempDir()) / ("aor_cost_" + std::to_string(::getpid()));
-    ~Root() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  } root;
-  return root.path;
-}
-
-fs::path pathOf(const std::string& name) { return scratchRoot() / name; }
+fs::path pathOf(const std::string& name) { return processScratchFolder("aor_cost") / name; }
 
 // A fresh output folder (nothing left from an earlier test).
 fs::path outDir(const std::string& name) {
@@ -48,7 +30,7 @@ nlohmann::json countedRun(const std::string& name, const std::string& extra, con
   fs::path out = outDir(name);
   auto r = runAoreplay("run " + capture() + " --frames 0:1 --no-images --cost " + measure + " --out " + out.string() + " " + extra);
   EXPECT_EQ(r.exitCode, 0) << r.output;
-  return r.exitCode == 0 ? readJson(out / "report.json") : nlohmann::json::object();
+  return r.exitCode == 0 ? readJsonFile(out / "report.json") : nlohmann::json::object();
 }
 
 TEST(CountedCost, TwoProcessesCountEveryPassIdentically) {
@@ -77,8 +59,8 @@ TEST(CountedCost, MoreSlicesCountMoreInGtaoAloneAndCompareSaysSo) {
                          std::to_string(slices) + " --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
   }
-  auto a = readJson(one / "report.json")["frames"][0]["instructions"];
-  auto b = readJson(two / "report.json")["frames"][0]["instructions"];
+  auto a = readJsonFile(one / "report.json")["frames"][0]["instructions"];
+  auto b = readJsonFile(two / "report.json")["frames"][0]["instructions"];
   EXPECT_GT(b["gtao"].get<double>(), 1.3 * a["gtao"].get<double>());
   EXPECT_EQ(a["linearize_depth"], b["linearize_depth"]);  // its inputs are byte-identical
   EXPECT_EQ(a["upload"], b["upload"]);
@@ -86,7 +68,7 @@ TEST(CountedCost, MoreSlicesCountMoreInGtaoAloneAndCompareSaysSo) {
   auto compare = runAoreplay("compare " + (one / "report.json").string() + " " + (two / "report.json").string() +
                              " --json " + json.string());
   EXPECT_EQ(compare.exitCode, 1) << compare.output;
-  auto verdicts = readJson(json);
+  auto verdicts = readJsonFile(json);
   EXPECT_EQ(verdicts["measure"], "instructions");
   EXPECT_EQ(verdicts["level"], "counts");
   for (const auto& p : verdicts["passes"]) {
@@ -147,7 +129,7 @@ TEST(CountedCost, SweepCountsEachConfigurationsPasses) {
                        out.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("instructions counted under callgrind"), std::string::npos) << r.output;
-  auto sweep = readJson(out / "sweep.json");
+  auto sweep = readJsonFile(out / "sweep.json");
   ASSERT_EQ(sweep["rows"].size(), 2u);
   const auto& one = sweep["rows"][0]["instructions"];
   const auto& two = sweep["rows"][1]["instructions"];

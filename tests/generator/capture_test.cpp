@@ -13,26 +13,15 @@
 #include "capture/capture.h"
 #include "core/input_error.h"
 #include "generator/generator_internal.h"
+#include "scratch_folder.h"
 
 using namespace aor::gen;
 namespace fs = std::filesystem;
 
 namespace {
 
-// This process's scratch folder, removed when the test program ends (tests run one a process).
-const fs::path& scratchRoot() {
-  static const struct Root {
-    fs::path path = fs::path(testing::TempDir()) / ("aor_generator_" + std::to_string(::getpid()));
-    ~Root() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  } root;
-  return root.path;
-}
-
 fs::path scratch(const std::string& name) {
-  const fs::path p = scratchRoot() / name;
+  const fs::path p = aor::test::processScratchFolder("aor_generator") / name;
   fs::remove_all(p);
   return p;
 }
