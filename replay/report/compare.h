@@ -73,7 +73,7 @@ enum class Verdict { Same, Faster, Slower, Unknown };
 const char* verdictText(Verdict v);
 
 // The default smallest change of a counted measure: instructions are exact (x1.001); cycles come
-// from a cache simulation that other threads' allocations perturb by up to 7e-4 of a pass (measured,
+// from a cache simulation that other threads' allocations perturb by up to 9e-4 of a pass (measured,
 // bench/RESULTS.md "Counted cost"), so x1.01.
 double countsMinEffect(const std::string& measure);
 double countsMinEffect(const std::string& measure, const CompareOptions& options);
