@@ -52,8 +52,9 @@ stop_hog() {
 trap stop_hog EXIT
 
 # One busy loop for `seconds`, after `delay`: started in the background, its pid kept to stop it.
+# Its command line carries HOG_TAG (default ab-experiments-hog) so a test can find its own.
 start_hog() {  # delay seconds
-  ( sleep "$1"; exec timeout "$2" bash -c 'while :; do :; done' ) &
+  ( sleep "$1"; exec timeout "$2" bash -c 'while :; do :; done' "${HOG_TAG:-ab-experiments-hog}" ) &
   hog_pid=$!
 }
 

@@ -36,7 +36,8 @@ chmod +x "$scratch/build/replay/aoreplay"
 failures=0
 fail() { echo "FAIL $*"; failures=$((failures + 1)); }
 out="$scratch/out"
-log=$(RUN_ARGS="--frames 0:2" bash "$script" "$scratch/build" "$out" 2 1 2>&1) || fail "the script failed: $log"
+tag="ab-experiments-test-hog-$$"  # this test's hogs only: another experiment may run beside it
+log=$(HOG_TAG=$tag RUN_ARGS="--frames 0:2" bash "$script" "$scratch/build" "$out" 2 1 2>&1) || fail "the script failed: $log"
 grep -qx "a=--frames 0:2 --preset ultra" "$out/preset/1/args.txt" || fail "preset A args: $(cat "$out/preset/1/args.txt")"
 grep -qx "b=--frames 0:2 --preset high" "$out/preset/1/args.txt" || fail "preset B args: $(cat "$out/preset/1/args.txt")"
 grep -qx "b=--frames 0:2 --set slices=4" "$out/slice/2/args.txt" || fail "slice B args: $(cat "$out/slice/2/args.txt")"
@@ -50,7 +51,7 @@ check "s['hog']['exit_codes'] == {'0': 2} and s['hog']['every_judged_name_same']
 check "s['slice']['exit_codes'] == {'1': 2} and s['slice']['gtao_verdicts'] == {'slower': 2}" "slice"
 check "s['preset']['gtao_verdicts'] == {'faster': 2} and s['preset']['every_judged_name_same'] == 0" "preset"
 grep -q "hog 2: exit 0 .*one busy core from" <<< "$log" || fail "no hog note: $log"
-# The hog was started by the script as `timeout ... bash -c 'while :; do :; done'`; none may outlive it.
-if pgrep -f "timeout .* bash -c while :; do :; done" >/dev/null; then fail "a hog outlived the script"; fi
+# The hog was started by the script as `timeout ... bash -c 'while :; do :; done' TAG`; none may outlive it.
+if pgrep -f "while :; do :; done $tag" >/dev/null; then fail "a hog outlived the script"; fi
 [ "$failures" -eq 0 ] && echo "ok: arguments per kind, summary counts, no hog left"
 [ "$failures" -eq 0 ]
