@@ -59,6 +59,10 @@ std::string googleBenchmarkJson(const std::vector<SeriesHistory>& series, const 
                               {"run_name", name}, {"run_type", "iteration"}, {"repetitions", values.size()},
                               {"repetition_index", i}, {"threads", 1}, {"iterations", 1},
                               {"real_time", values[i]}, {"cpu_time", values[i]}, {"time_unit", "ms"}});
+        // A counted series' values are counts: a counter names them, the label says so.
+        if (h.key.counted())
+          benchmarks.back()[h.key.measure] = values[i],
+          benchmarks.back()["label"] = h.key.measure + " counted under callgrind (real_time holds the count, not ms)";
       }
   }
   nlohmann::json context{{"executable", "aoreplay export"}, {"commit", commit}, {"num_cpus", 1},
@@ -74,8 +78,10 @@ std::string bencherMetricFormat(const std::vector<SeriesHistory>& series, const 
     if (!c) continue;
     for (const auto& [pass, values] : valuesAt(*c)) {
       auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-      out[benchmarkName(h, pass)] = {
-          {"latency", {{"value", medianOf(values) * 1e6}, {"lower_value", *lo * 1e6}, {"upper_value", *hi * 1e6}}}};
+      // Bencher's latency is in ns; a counted series' values go under a measure of their own name.
+      const double scale = h.key.counted() ? 1.0 : 1e6;
+      out[benchmarkName(h, pass)] = {{h.key.counted() ? h.key.measure : "latency",
+                                      {{"value", medianOf(values) * scale}, {"lower_value", *lo * scale}, {"upper_value", *hi * scale}}}};
     }
   }
   return out.dump(2) + "\n";
