@@ -41,11 +41,13 @@ void addCostOption(CLI::App& command, CostMeasure& cost, const std::string& help
       ->default_str("time");
 }
 
-void requireLavapipe(const DeviceInfo& device, CostMeasure cost) {
-  if (!device.isLavapipe)
+void prepareCountedContext(VulkanContext& vk, CostMeasure cost) {
+  if (cost == CostMeasure::Time) return;
+  if (!vk.info.isLavapipe)
     throw InputError("", std::nullopt, "--device",
                      fmt::format("--cost {} counts lavapipe's work on this CPU; device '{}' ({}) is not lavapipe",
-                                 costMeasureName(cost), device.name, device.driver));
+                                 costMeasureName(cost), vk.info.name, vk.info.driver));
+  vk.settleAfterSubmit = true;
 }
 
 }  // namespace aor::cli

@@ -21,7 +21,8 @@ struct TimedOnlyOptions {
 void prepareCountedReplay(CostMeasure cost, const TimedOnlyOptions& given, ReplayOptions& options);
 // --cost time|instructions|cycles, with `help` after the choices.
 void addCostOption(CLI::App& command, CostMeasure& cost, const std::string& help);
-// Counts are lavapipe's work on this CPU: another device is InputError (--device).
-void requireLavapipe(const DeviceInfo& device, CostMeasure cost);
+// The context a counted replay runs on: lavapipe (counts are its work on this CPU; another device
+// is InputError, --device), settling after every submission. Nothing for `time`.
+void prepareCountedContext(VulkanContext& vk, CostMeasure cost);
 
 }  // namespace aor::cli

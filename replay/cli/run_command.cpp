@@ -103,8 +103,7 @@ struct Replayed {
 Replayed replay(const RunArgs& args, const Capture& capture, const ReplayOptions& options, const OutputDirectory& out) {
   ShownFrames shown(html::framesToShow(options.frameBegin, options.frameEnd));
   ContextScope context({args.device, args.validate, optionalExtensionsOf({options.settings})});
-  if (args.cost != CostMeasure::Time) requireLavapipe(context.vk.info, args.cost);
-  context.vk.settleAfterSubmit = args.cost != CostMeasure::Time;
+  prepareCountedContext(context.vk, args.cost);
   RunResults run = runCapture(context.vk, capture, RunRequest(options), [&](const FrameOutput& frame) {
     if (!args.noImages) writeFrameImages(out.staging(), frame);
     for (const auto& view : frame.debugImages) writeDebugImage(out.staging(), frame.index, view);

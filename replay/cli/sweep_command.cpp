@@ -108,8 +108,7 @@ int sweepCommand(const SweepArgs& args) {
     for (const auto& config : configs) runs.push_back(config.settings);
     ContextScope context({args.device, false, optionalExtensionsOf(std::move(runs))});
     info.device = context.vk.info.name;
-    if (args.cost != CostMeasure::Time) requireLavapipe(context.vk.info, args.cost);
-    context.vk.settleAfterSubmit = args.cost != CostMeasure::Time;
+    prepareCountedContext(context.vk, args.cost);
     auto reference = completeReferences(context.vk, capture, begin, end, args.assignments);
     info.referenceKind = reference.kind;
     // A line per configuration, with the time left estimated from the ones done (cli/progress.h).

@@ -39,12 +39,11 @@ std::vector<std::string> words(std::string_view line) {
 }
 
 // glibc's allocator (malloc.c) and its locks, condition variables and futexes (nptl).
-constexpr std::array<std::string_view, 25> kExcludedPrefixes = {
+constexpr std::array<std::string_view, 30> kExcludedPrefixes = {
     "malloc", "free", "calloc", "realloc", "posix_memalign", "memalign", "aligned_alloc", "valloc", "pvalloc",
     "__libc_malloc", "__libc_free", "__libc_calloc", "__libc_realloc", "__libc_memalign", "_int_", "_mid_memalign",
     "unlink_chunk", "sysmalloc", "systrim", "alloc_perturb", "tcache", "arena_",
-    "pthread_", "__pthread_", "_pthread_"};
-constexpr std::array<std::string_view, 5> kExcludedSyncPrefixes = {"___pthread", "__lll_", "__futex", "futex", "__condvar"};
+    "pthread_", "__pthread_", "_pthread_", "___pthread", "__lll_", "__futex", "futex", "__condvar"};
 
 bool startsWithAny(std::string_view name, const auto& prefixes) {
   for (std::string_view p : prefixes)
@@ -108,7 +107,7 @@ double costOf(CostMeasure measure, const EventCounts& counts) {
 
 bool isExcludedFromCounts(std::string_view function) {
   function = function.substr(0, function.find_first_of("@'"));  // pthread_mutex_lock@@GLIBC_2.2.5, free'2
-  return startsWithAny(function, kExcludedPrefixes) || startsWithAny(function, kExcludedSyncPrefixes);
+  return startsWithAny(function, kExcludedPrefixes);
 }
 
 EventCounts countedEvents(const std::string& dumpText) {

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/compare_stats.h"
 #include "core/pass_names.h"
 #include "core/input_error.h"
 #include "core/json_input.h"
@@ -63,13 +64,6 @@ Verdict verdictOf(double ratio, double minEffect) {
   if (ratio >= 1.0 + minEffect) return Verdict::Slower;
   if (ratio <= 1.0 / (1.0 + minEffect)) return Verdict::Faster;
   return Verdict::Same;
-}
-
-// The one value of a name on a side: its runs' value (equal when counts are exact; the median else).
-double sideValue(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 std::vector<std::pair<std::string, std::pair<bool, std::vector<double>>>> runValues(const SideTimings& side) {
@@ -176,8 +170,8 @@ Comparison compareCounts(const SideTimings& baseline, const SideTimings& candida
     p.newValues = o->second.second;
     p.baselineCount = p.baselineValues.size();
     p.newCount = p.newValues.size();
-    p.baselineMedian = sideValue(p.baselineValues);
-    p.newMedian = sideValue(p.newValues);
+    p.baselineMedian = medianOf(p.baselineValues);  // the runs agree when counts are exact
+    p.newMedian = medianOf(p.newValues);
     p.logRatio = std::log(p.newMedian) - std::log(p.baselineMedian);
     const double minEffect = countsMinEffect(measure, options);
     p.effectFloor = p.threshold = std::log1p(minEffect);

@@ -12,16 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu_test_support.h"
+#include "scratch_folder.h"
 #include "report/compare.h"
 
 namespace aor::test {
 namespace {
 namespace fs = std::filesystem;
-
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
 
 // `STUB run CAPTURE [--ms GTAO_MS] [--label L --log FILE] [--fail STATUS] --out DIR`: appends L to
 // FILE, then exits STATUS or writes DIR/report.json: one frame, three timed repetitions of gtao
@@ -83,14 +79,14 @@ TEST(Ab, RunsInAbbaOrderKeepsEveryRunAndFindsASlowerB) {
   EXPECT_NE(r.output.find("ab: run 12/12 (round 3/3): a/06"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("values: one per run"), std::string::npos) << r.output;
 
-  auto verdicts = readJson(ab.out / "compare.json");
+  auto verdicts = readJsonFile(ab.out / "compare.json");
   EXPECT_EQ(verdicts["level"], "runs");
   EXPECT_EQ(verdicts["baseline"]["runs"], 6);
   EXPECT_EQ(verdicts["passes"][0]["name"], "gtao");
   EXPECT_EQ(verdicts["passes"][0]["verdict"], "slower");
   EXPECT_NEAR(verdicts["passes"][0]["ratio"].get<double>(), 1.5, 1e-9);
   EXPECT_EQ(verdicts["passes"][1]["verdict"], "same");
-  auto record = readJson(ab.out / "ab.json");
+  auto record = readJsonFile(ab.out / "ab.json");
   ASSERT_EQ(record["runs"].size(), 12u);
   EXPECT_EQ(record["runs"][1]["out"], "b/01");
   EXPECT_EQ(record["runs"][3]["out"], "a/02");
@@ -100,7 +96,7 @@ TEST(Ab, RunsInAbbaOrderKeepsEveryRunAndFindsASlowerB) {
   auto again = ab.dir / "again.json";
   auto c = runAoreplay(fmt::format("compare {} {} --json {}", (ab.out / "a").string(), (ab.out / "b").string(), again.string()));
   EXPECT_EQ(c.exitCode, 1) << c.output;
-  auto rejudged = readJson(again);
+  auto rejudged = readJsonFile(again);
   for (size_t i = 0; i < verdicts["passes"].size(); ++i) {
     EXPECT_EQ(rejudged["passes"][i]["verdict"], verdicts["passes"][i]["verdict"]) << i;
     EXPECT_EQ(rejudged["passes"][i]["p_holm"], verdicts["passes"][i]["p_holm"]) << i;
@@ -111,7 +107,7 @@ TEST(Ab, SameTimesAreSameAndAnEarlierResultIsReplaced) {
   AbSetup ab("ab-same");
   auto r = runAoreplay(ab.command(3, "--ms 1", "--ms 1"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const auto& p : readJson(ab.out / "compare.json")["passes"]) EXPECT_EQ(p["verdict"], "same") << p["name"];
+  for (const auto& p : readJsonFile(ab.out / "compare.json")["passes"]) EXPECT_EQ(p["verdict"], "same") << p["name"];
   // DIR holds ab.json: an earlier result, replaced by the next one.
   r = runAoreplay(ab.command(1, "--ms 1", "--ms 1"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -190,11 +186,11 @@ TEST(Ab, TheRealBinaryRunsBothSidesAsFreshProcesses) {
                                    "--b '--frames 0:2 --no-images --validate --set slices=4' --out {}",
                                    capture.string(), out.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;  // 2 runs a side cannot give a verdict
-  auto record = readJson(out / "ab.json");
+  auto record = readJsonFile(out / "ab.json");
   EXPECT_EQ(record["a"]["binary"], record["b"]["binary"]) << "both default to this binary";
   EXPECT_EQ(fs::canonical(record["a"]["binary"].get<std::string>()), fs::canonical(AOR_EXE));
   for (const char* run : {"a/01", "a/02", "b/01", "b/02"}) {
-    auto report = readJson(out / run / "report.json");
+    auto report = readJsonFile(out / run / "report.json");
     EXPECT_EQ(report["validation"]["messages"], 0) << run;
     EXPECT_EQ(report["settings"]["slices"], run[0] == 'a' ? 3 : 4) << run;
     auto timings = loadTimingSamples(out / run / "report.json");

@@ -12,16 +12,12 @@
 
 #include "capture/image_io.h"
 #include "gpu_test_support.h"
+#include "scratch_folder.h"
 #include "report/compare.h"
 
 namespace aor::test {
 namespace {
 namespace fs = std::filesystem;
-
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
 
 std::vector<float> visibilityOf(const fs::path& exr) {
   return readExrChannels(exr, {"visibility"}).at("visibility");
@@ -46,7 +42,7 @@ TEST_F(Cli, RunWritesImagesReportAndTraceWithPerPassTimes) {
   EXPECT_EQ(header.channels.count("visibility"), 1u);
   EXPECT_EQ(header.channels.count("bent.X"), 1u);
 
-  auto report = readJson(out / "report.json");
+  auto report = readJsonFile(out / "report.json");
   std::map<std::string, nlohmann::json> passes;
   for (const auto& p : report["passes"]) passes[p["name"]] = p;
   for (const char* pass : {"gtao", "spatial", "temporal"}) {
@@ -90,7 +86,7 @@ TEST_F(Cli, RunWritesImagesReportAndTraceWithPerPassTimes) {
   // The shared front's normal blocks: gtao reads the capture's world normals itself.
   EXPECT_EQ(culled, (std::vector<std::string>{"reconstruct_normals", "view_normals"}));
 
-  auto trace = readJson(out / "trace.json");
+  auto trace = readJsonFile(out / "trace.json");
   std::set<int> tracks;
   for (const auto& e : trace["traceEvents"])
     if (e["ph"] == "X") tracks.insert(e["tid"].get<int>());
@@ -107,7 +103,7 @@ TEST_F(Cli, ReportBreaksDownHostTimeAndDecodesAheadOfTheGpu) {
   // default, decodes before and writes after the GPU work (timing_mode_test.cpp).
   auto r = runAoreplay(fmt::format("run {} --out {} --no-images --warmup 30 --overlap", capture().string(), out.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  auto report = readJson(out / "report.json");
+  auto report = readJsonFile(out / "report.json");
   double gpu = 0;
   for (const auto& frame : report["frames"]) {
     for (const char* part : {"decode", "upload", "wait", "record", "gpu", "readback", "write"}) {
@@ -127,7 +123,7 @@ TEST_F(Cli, ReportBreaksDownHostTimeAndDecodesAheadOfTheGpu) {
   // on the GPU.
   double setupMs = report["setup_ms"].get<double>();
   EXPECT_GT(setupMs, 0.0);
-  auto trace = readJson(out / "trace.json");
+  auto trace = readJsonFile(out / "trace.json");
   double decode0Start = -1, decode1Start = -1, gpu0End = -1;
   for (const auto& e : trace["traceEvents"]) {
     if (e["ph"] != "X" || !e["args"].contains("frame")) continue;
@@ -162,7 +158,7 @@ TEST_F(Cli, ValidateOnTheShippedCaptureReportsZeroMessages) {
   auto shipped = fs::path(AOR_SOURCE_DIR) / "captures" / "boxes-orbit";
   auto r = runAoreplay(fmt::format("run {} --validate --no-images --out {}", shipped.string(), out.string()));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  auto report = readJson(out / "report.json");
+  auto report = readJsonFile(out / "report.json");
   EXPECT_TRUE(report["validation"]["enabled"].get<bool>());
   EXPECT_EQ(report["validation"]["messages"].get<int>(), 0);
   EXPECT_EQ(report["frames"].size(), loadCapture(shipped).frames.size());
@@ -250,7 +246,7 @@ TEST_F(Cli, RunAndSweepReplaceOnlyEarlierResults) {
   ASSERT_EQ(runAoreplay(fmt::format("run {} --frames 0:1 --no-images --out {}", cap, earlier.string())).exitCode, 0);
   auto again = runAoreplay(fmt::format("run {} --frames 0:2 --no-images --out {}", cap, earlier.string()));
   EXPECT_EQ(again.exitCode, 0) << again.output;
-  EXPECT_EQ(readJson(earlier / "report.json")["frames"].size(), 2u) << "the earlier result was replaced";
+  EXPECT_EQ(readJsonFile(earlier / "report.json")["frames"].size(), 2u) << "the earlier result was replaced";
 }
 
 TEST_F(Cli, GraphCommandRefusesAnUnwritableDotPathAndLeavesNothingBehind) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "core/stats.h"
 #include "report/html/charts.h"
 #include "report/html/graph_svg.h"
 #include "report/html/html_page.h"
@@ -36,11 +37,8 @@ PassFigures figuresOf(const json& pass, const std::string& measure) {
     const json& ms = pass["gpu_ms"];
     return {ms["median"].get<double>(), ms["min"].get<double>(), ms["max"].get<double>(), ms["count"].get<size_t>()};
   }
-  std::vector<double> v = pass[measure]["per_frame"].get<std::vector<double>>();
-  if (v.empty()) return {};
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back(), n};
+  const Summary s = summarize(pass[measure]["per_frame"].get<std::vector<double>>());
+  return {s.median, s.min, s.max, s.count};
 }
 
 std::pair<std::string, std::string> costFact(const json& r) {
