@@ -31,6 +31,14 @@
 // --floor-json=PATH writes the same as JSON. --no-rates: counts only (floor times 0), e.g. on lavapipe
 // with --benchmark_filter=none to skip the timing, as counts do not depend on the device.
 //
+// --cost=instructions|cycles (README, "Counted cost"): counts instead of times. ao_bench re-executes
+// itself under callgrind as `aoreplay run --cost` does; each configuration replays frames 0:2 once
+// (a warm-up first), and each pass of the second frame and `pipeline` (the compute passes' sum) is
+// one repetition whose real_time holds the count (not ms), with a counter named after the measure;
+// the context's aoreplay_cost block (as report.json's "cost") lets `aoreplay compare` judge counts
+// exactly; the scaling fit (of milliseconds) is left out. --reps, --warmup, --warmup-ms and --floor are refused with counts (exit 2): counts are
+// taken once, need no clock warm-up, and the floor is a timed measurement. --cost=time is the default.
+//
 // Warm-up is by time as well as by count: a GPU needs some hundred milliseconds of steady work to
 // leave its idle clocks, and a configuration measured in a 5 ms burst is measured at whatever clock
 // the previous one left (seen on the H100: one configuration 40% slower in one of two runs). A
@@ -51,6 +59,7 @@
 #include "device_rates.h"
 #include "floor.h"
 #include "core/input_error.h"
+#include "core/pass_names.h"
 #include "options/number.h"
 #include "options/size.h"
 #include "replay_loop/replayer.h"
@@ -60,6 +69,8 @@
 #include "run/gpu_total.h"
 #include "report/run_outputs.h"
 #include "core/stats.h"
+#include "cost/launcher.h"
+#include "run/counted.h"
 #include "vk/context.h"
 #include "vk/op_counter.h"
 
@@ -84,6 +95,8 @@ struct Options {
   std::string floorJson;
   int rateMib = 256;
   std::pair<int, int> rateSize{3840, 2160};
+  CostMeasure cost = CostMeasure::Time;
+  std::vector<std::string> timedOnlyFlags;  // given flags that counts refuse
 };
 
 struct Config {
@@ -104,13 +117,17 @@ struct Config {
 };
 
 struct Measured {
-  std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution
+  std::map<std::string, std::vector<double>> passMs;  // per pass, one sample per timed execution (counted: the count)
   std::vector<double> pipelineMs;                      // repetitionSumsMs: the compute passes, per execution
 };
 
+bool counted(const Options& o) { return o.cost != CostMeasure::Time; }
+
 class Harness {
  public:
-  explicit Harness(Options o) : options_(std::move(o)), source_(loadCapture(options_.capture)), context_({options_.device, false}) {}
+  explicit Harness(Options o) : options_(std::move(o)), source_(loadCapture(options_.capture)), context_({options_.device, false}) {
+    prepareCountedContext(context_.vk, options_.cost);
+  }
   const Options& options() const { return options_; }
   const DeviceInfo& device() const { return context_.vk.info; }
 
@@ -162,6 +179,7 @@ class Harness {
   const Measured& measure(const Config& config) {
     auto found = measured_.find(config.key());
     if (found != measured_.end()) return found->second;
+    if (counted(options_)) return measured_.emplace(config.key(), countCost(config)).first->second;
     Capture capture = resampledCapture(options_.capture, config.width, config.height, 2, options_.cache);
     ReplayOptions replay(settings(config, capture));
     replay.frameBegin = 0;
@@ -178,6 +196,26 @@ class Harness {
     // samples is the frame's totalMedianMs.
     m.pipelineMs = repetitionSumsMs({timedFrame(frame)}, PassGroup::Compute);
     return measured_.emplace(config.key(), std::move(m)).first->second;
+  }
+
+  // Counted cost: one replay of frames 0:2 after a warm-up; frame 1's count of each pass, and
+  // the compute passes' sum as `pipeline`.
+  Measured countCost(const Config& config) {
+    Capture capture = resampledCapture(options_.capture, config.width, config.height, 2, options_.cache);
+    ReplayOptions replay(settings(config, capture));
+    replay.frameBegin = 0;
+    replay.frameEnd = 2;
+    prepareCountedReplay(options_.cost, {}, replay);
+    auto result = replayCapture(context_.vk, capture, replay, nullptr);
+    Measured m;
+    double pipeline = 0;
+    for (const auto& pass : result.frames.back().passes) {
+      const double count = costOf(options_.cost, pass.counts);
+      m.passMs[pass.name] = {count};
+      if (!isHostCopyPass(pass.name)) pipeline += count;
+    }
+    m.pipelineMs = {pipeline};
+    return m;
   }
 
   // Frame 1's counts per live pass (history valid), from one replay of frames 0:2 through the
@@ -209,6 +247,13 @@ class Harness {
 Harness* harness = nullptr;
 std::vector<Config> floorConfigs;  // every configuration registered by registerConfig, in order
 
+// A counted repetition: real_time holds the count (manual time in "ms"), a counter names it.
+void labelCount(benchmark::State& state, double count) {
+  const std::string measure = costMeasureName(harness->options().cost);
+  state.counters[measure] = count;
+  state.SetLabel(measure + " counted under callgrind (real_time holds the count, not ms)");
+}
+
 // One benchmark = one series of samples; repetition i reports sample i as manual time.
 void registerSeries(const std::string& name, Config config, std::string pass) {
   auto next = std::make_shared<size_t>(0);
@@ -220,13 +265,15 @@ void registerSeries(const std::string& name, Config config, std::string pass) {
       return;
     }
     const auto& samples = pass == "pipeline" ? m.pipelineMs : found->second;
-    for (auto _ : state) state.SetIterationTime(samples.at(*next % samples.size()) / 1000.0);
+    const double sample = samples.at(*next % samples.size());
+    for (auto _ : state) state.SetIterationTime(sample / 1000.0);
     ++*next;
     state.counters["pixels"] = double(config.width) * double(config.height);
+    if (counted(harness->options())) labelCount(state, sample);
   })
       ->UseManualTime()
       ->Iterations(1)
-      ->Repetitions(harness->options().reps)
+      ->Repetitions(counted(harness->options()) ? 1 : harness->options().reps)
       ->Unit(benchmark::kMillisecond);
 }
 
@@ -279,6 +326,7 @@ void registerAll() {
       for (const auto& preset : presetsOf(t)) registerConfig({&t, preset, {}, w, h});
       for (const auto& extra : o.extras) registerConfig({&t, t.defaultPreset, extra, w, h});
     }
+  if (counted(o)) return;  // the scaling fit is of milliseconds
   for (const auto& c : scalingConfigs()) registerSeries("pipeline/" + c.label(), c, "pipeline");
 }
 
@@ -299,6 +347,12 @@ ScalingInput scalingInput() {
   auto [w, h] = scalingSize();
   in.sliceStepsSize = fmt::format("{}x{}", w, h);
   return in;
+}
+
+CostMeasure parseCostMeasure(const std::string& name) {
+  for (CostMeasure m : {CostMeasure::Time, CostMeasure::Instructions, CostMeasure::Cycles})
+    if (name == costMeasureName(m)) return m;
+  throw InputError("", std::nullopt, "--cost", fmt::format("'{}' is not time, instructions or cycles", name));
 }
 
 std::vector<std::string> splitList(const std::string& s, char separator = ',') {
@@ -339,9 +393,16 @@ Options parseOwnFlags(int& argc, char** argv) {
     else if (auto fj = value("--floor-json")) o.floorJson = *fj;
     else if (auto rm = value("--rate-mib")) o.rateMib = parseInt(*rm, "--rate-mib", 1, 4096);
     else if (auto rs = value("--rate-size")) o.rateSize = parseSize(*rs, "--rate-size");
+    else if (auto cm = value("--cost")) o.cost = parseCostMeasure(*cm);
     else argv[kept++] = argv[i];
+    for (const char* timedOnly : {"--reps", "--warmup", "--warmup-ms", "--floor"})
+      if (arg == timedOnly || arg.starts_with(std::string(timedOnly) + "=")) o.timedOnlyFlags.push_back(timedOnly);
   }
   argc = kept;
+  if (counted(o) && !o.timedOnlyFlags.empty())
+    throw InputError("", std::nullopt, o.timedOnlyFlags.front(),
+                     fmt::format("--cost={} counts each configuration once without a clock to warm up; {} is for time",
+                                 costMeasureName(o.cost), o.timedOnlyFlags.front()));
   for (const auto& t : o.techniques) findTechnique(t);  // an unknown name is bad usage: exit 2
   return o;
 }
@@ -375,15 +436,20 @@ void reportFloor() {
 int main(int argc, char** argv) {
   using namespace aor::bench;
   try {
-    Harness h(parseOwnFlags(argc, argv));
+    aor::rememberCommandLine(argc, argv);  // counted cost re-executes it under callgrind
+    Options options = parseOwnFlags(argc, argv);
+    if (counted(options) && !aor::CallgrindCounter::underCallgrind()) return aor::runUnderCallgrind(options.cost);
+    Harness h(std::move(options));
     harness = &h;
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
     benchmark::AddCustomContext("vulkan_device", h.device().name);
     benchmark::AddCustomContext("vulkan_driver", h.device().driver);
+    if (counted(h.options()))
+      benchmark::AddCustomContext("aoreplay_cost", aor::costDependencies(h.options().cost, h.device()).dump());
     registerAll();
     benchmark::RunSpecifiedBenchmarks();
-    printScaling(stderr, scalingInput());
+    if (!counted(h.options())) printScaling(stderr, scalingInput());
     if (h.options().floor) reportFloor();
     benchmark::Shutdown();
   } catch (const aor::InputError& e) {  // bad usage, like an unrecognised flag: exit 2

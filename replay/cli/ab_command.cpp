@@ -19,7 +19,7 @@
 #include "report/html/compare_page.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
-#include "import/subprocess.h"
+#include "core/subprocess.h"
 #include "core/output_directory.h"
 
 namespace aor::cli {

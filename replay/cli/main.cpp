@@ -9,7 +9,7 @@
 
 #include "core/input_error.h"
 #include "cli/commands.h"
-#include "cli/cost_launcher.h"
+#include "cost/launcher.h"
 #include "cli/settings_options.h"
 #include "cli/version.h"
 #include "core/output_directory.h"
@@ -33,7 +33,7 @@ int checkedStandardOutput(int status) {
 int main(int argc, char** argv) {
   // Before any thread starts: an interrupted run removes its staging folder and lock.
   aor::cleanUpOutputsOnTermination();
-  aor::cli::rememberCommandLine(argc, argv);  // counted cost re-executes it under callgrind
+  aor::rememberCommandLine(argc, argv);  // counted cost re-executes it under callgrind
   CLI::App app{"aoreplay: deterministic replay and profiling of screen-space ambient occlusion captures"};
   app.require_subcommand(1);
   app.set_version_flag("--version", [] {

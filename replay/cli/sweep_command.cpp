@@ -8,8 +8,9 @@
 #include <fmt/format.h>
 
 #include "cli/commands.h"
-#include "cli/cost_launcher.h"
-#include "cli/counted_run.h"
+#include "cost/launcher.h"
+#include "cli/cost_option.h"
+#include "run/counted.h"
 #include "cli/handlers.h"
 #include "cli/number_options.h"
 #include "options/progress.h"

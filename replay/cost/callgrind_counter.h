@@ -1,7 +1,7 @@
 #pragma once
 // Counted cost (README, "Counted cost"): on a CPU device every shader is machine code, so the work
 // of a pass can be counted instead of timed. aoreplay re-executes itself under valgrind's
-// callgrind with instrumentation off (cli/cost_launcher.h); inside, a CallgrindCounter brackets
+// callgrind with instrumentation off (cost/launcher.h); inside, a CallgrindCounter brackets
 // each counted submission: the device's thread left to settle, counters zeroed and
 // instrumentation on before it, off and a named dump after it. The dump is read (and removed) at
 // once. Counts do not move with the machine's load.

@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
-#include "import/subprocess.h"
+#include "core/subprocess.h"
 
 namespace aor {
 

@@ -11,7 +11,7 @@
 
 #include "core/input_error.h"
 #include "import/private_display.h"
-#include "import/subprocess.h"
+#include "core/subprocess.h"
 
 namespace aor {
 

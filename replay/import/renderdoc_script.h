@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "import/subprocess.h"
+#include "core/subprocess.h"
 
 namespace aor {
 

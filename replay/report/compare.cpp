@@ -164,7 +164,9 @@ std::string withoutRepetitionCount(std::string name) {
 
 // Google Benchmark JSON: every repetition is an entry with run_type "iteration"; aggregates
 // (mean, median, stddev, cv) are skipped because the test needs the samples themselves.
+// Counted (ao_bench --cost=...): the counter named after the measure holds each count.
 TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
+  const RunMeasure measure = measureOfBenchmark(doc, path);
   TimingSamples samples;
   const auto& benchmarks = doc["benchmarks"];
   for (size_t i = 0; i < benchmarks.size(); ++i) {
@@ -180,8 +182,10 @@ TimingSamples fromBenchmark(const nlohmann::json& doc, const fs::path& path) {
                        fmt::format("benchmark failed: {}", quoteForMessage(member("error_message", ""))));
     std::string name = withoutControlCharacters(withoutRepetitionCount(member("run_name", member("name", ""))), path.string(), prefix + ".name");
     if (name.empty()) throw InputError(path.string(), std::nullopt, prefix + ".name", "missing");
-    double scale = msPerUnit(member("time_unit", "ns"), path, prefix + ".time_unit");
-    double value = positiveNumber(b.contains("real_time") ? b["real_time"] : nlohmann::json(), path, prefix + ".real_time") * scale;
+    double value = measure.counted()
+                       ? positiveNumber(b.contains(measure.name) ? b[measure.name] : nlohmann::json(), path, prefix + "." + measure.name)
+                       : positiveNumber(b.contains("real_time") ? b["real_time"] : nlohmann::json(), path, prefix + ".real_time") *
+                             msPerUnit(member("time_unit", "ns"), path, prefix + ".time_unit");
     auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& e) { return e.name == name; });
     if (it == samples.end()) it = samples.insert(samples.end(), {name, {}, isHostCopyPass(name.substr(0, name.find('/')))});
     it->samples.push_back(value);
@@ -227,6 +231,7 @@ std::vector<fs::path> reportsUnder(const fs::path& folder) {
 RunMeasure loadRunMeasure(const fs::path& path) {
   auto doc = readJsonFile(path);
   if (doc.is_object() && memberOr<std::string>(doc, "tool", "", path, "") == "aoreplay") return measureOfReport(doc, path);
+  if (doc.is_object() && doc.contains("benchmarks")) return measureOfBenchmark(doc, path);
   return {};
 }
 

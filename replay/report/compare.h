@@ -36,7 +36,8 @@ struct RunMeasure {
   nlohmann::json dependencies;  // counted only
   bool counted() const { return name != "time"; }
 };
-// report.json's measure: its "cost" block's, else time (Google Benchmark JSON: time).
+// A run's measure: report.json's "cost" block, Google Benchmark JSON's context "aoreplay_cost"
+// (ao_bench --cost=...); else time.
 RunMeasure loadRunMeasure(const std::filesystem::path& path);
 
 struct RunTimings {

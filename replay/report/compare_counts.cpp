@@ -98,6 +98,16 @@ RunMeasure measureOfReport(const nlohmann::json& report, const fs::path& path) {
   return m;
 }
 
+RunMeasure measureOfBenchmark(const nlohmann::json& doc, const fs::path& path) {
+  if (!doc.contains("context") || !doc["context"].is_object() || !doc["context"].contains("aoreplay_cost")) return {};
+  const auto& text = doc["context"]["aoreplay_cost"];
+  nlohmann::json cost = text.is_string() ? nlohmann::json::parse(text.get<std::string>(), nullptr, false) : nlohmann::json();
+  if (!cost.is_object()) throw bad(path, "context.aoreplay_cost", "must be a string holding ao_bench's JSON cost block");
+  RunMeasure m = measureOfReport(nlohmann::json{{"cost", cost}}, path);
+  if (!m.counted()) throw bad(path, "context.aoreplay_cost.measure", "must be instructions or cycles");
+  return m;
+}
+
 TimingSamples countedSamples(const nlohmann::json& report, const fs::path& path, const std::string& measure) {
   TimingSamples samples;
   for (size_t i = 0; i < report["passes"].size(); ++i) {

@@ -26,25 +26,6 @@ nlohmann::json summaryJson(const Summary& s) {
 
 double sumOf(const std::vector<double>& values) { return std::accumulate(values.begin(), values.end(), 0.0); }
 
-// What counts depend on: two runs' counts compare exactly only when all of it is the same.
-nlohmann::json costDependencies(const ReplayOptions& options, const ReplayResult& result) {
-  nlohmann::json cost{{"measure", costMeasureName(options.cost)},
-                      {"device", result.device.name},
-                      {"driver", result.device.driverInfo},
-                      {"cpu", countedCpuName()},
-                      {"valgrind", countedValgrindVersion()},
-                      {"excluded", "the C library's allocator and thread synchronisation"}};
-  std::string key;
-  for (const char* k : {"measure", "device", "driver", "cpu", "valgrind"}) key += cost[k].get<std::string>() + "|";
-  if (options.cost == CostMeasure::Cycles) {
-    cost["cache"] = {{"I1", kCostCacheI1}, {"D1", kCostCacheD1}, {"LL", kCostCacheLL}};
-    cost["formula"] = kCyclesFormula;
-    key += std::string(kCostCacheI1) + "/" + kCostCacheD1 + "/" + kCostCacheLL;
-  }
-  cost["key"] = key;
-  return cost;
-}
-
 // report.json's counted cost: per pass the counts of each frame and their total, the run's totals
 // (compute passes; host copies apart) and what the counts depend on.
 void addCountedCost(nlohmann::json& report, const ReplayOptions& options, const ReplayResult& result) {
@@ -58,7 +39,7 @@ void addCountedCost(nlohmann::json& report, const ReplayOptions& options, const 
   report["passes"] = passes;
   report[key + "_total"] = compute;
   report[key + "_host_copies_total"] = copies;
-  report["cost"] = costDependencies(options, result);
+  report["cost"] = costDependencies(options.cost, result.device);
 }
 
 // report.json's GPU time: per pass its summary and every sample, and the run's totals.
@@ -83,6 +64,25 @@ nlohmann::json framePassesJson(const FrameRecord& f, CostMeasure measure) {
 }
 
 }  // namespace
+
+nlohmann::json costDependencies(CostMeasure measure, const DeviceInfo& device) {
+  nlohmann::json cost{{"measure", costMeasureName(measure)},
+                      {"device", device.name},
+                      {"driver", device.driverInfo},
+                      {"cpu", countedCpuName()},
+                      {"valgrind", countedValgrindVersion()},
+                      {"excluded", "the C library's allocator and thread synchronisation"}};
+  std::string key;
+  for (const char* k : {"measure", "device", "driver", "cpu", "valgrind"}) key += cost[k].get<std::string>() + "|";
+  if (measure == CostMeasure::Cycles) {
+    cost["cache"] = {{"I1", kCostCacheI1}, {"D1", kCostCacheD1}, {"LL", kCostCacheLL}};
+    cost["formula"] = kCyclesFormula;
+    key += std::string(kCostCacheI1) + "/" + kCostCacheD1 + "/" + kCostCacheLL;
+  }
+  cost["key"] = key;
+  return cost;
+}
+
 
 void writeFrameImages(const fs::path& outDir, const FrameOutput& frame) {
   fs::create_directories(outDir / "ao");

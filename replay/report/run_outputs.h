@@ -28,6 +28,10 @@ void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
 // Per-pass table (min / median / max GPU ms over all timed runs) for the terminal, and the total's
 // row: the same over the per-repetition sums of the compute passes (report/gpu_total.h).
 std::string passTable(const ReplayResult& result);
+// Counted cost's "cost" block: the measure and everything its counts depend on (device, driver,
+// CPU as the counted process sees it, valgrind, for cycles the cache geometry and formula) and
+// "key", all of it in one string: two runs' counts compare exactly only when their keys are equal.
+nlohmann::json costDependencies(CostMeasure measure, const DeviceInfo& device);
 // Counted cost's table: per pass its count over the frames and the largest of a frame.
 std::string countedPassTable(const ReplayResult& result, CostMeasure measure);
 

@@ -1,4 +1,4 @@
-#include "cli/cost_launcher.h"
+#include "cost/launcher.h"
 
 #include <sys/resource.h>
 
@@ -12,9 +12,9 @@
 
 #include "core/input_error.h"
 #include "core/output_directory.h"
-#include "import/subprocess.h"
+#include "core/subprocess.h"
 
-namespace aor::cli {
+namespace aor {
 
 namespace fs = std::filesystem;
 
@@ -88,4 +88,4 @@ int runUnderCallgrind(CostMeasure measure) {
   return result.signal ? 128 + result.signal : result.exitCode;
 }
 
-}  // namespace aor::cli
+}  // namespace aor

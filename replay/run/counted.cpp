@@ -1,15 +1,14 @@
-#include "cli/counted_run.h"
+#include "run/counted.h"
 
 #include <algorithm>
 #include <cstdlib>
-#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/input_error.h"
 
-namespace aor::cli {
+namespace aor {
 
 void prepareCountedReplay(CostMeasure cost, const TimedOnlyOptions& given, ReplayOptions& options) {
   const char* measure = costMeasureName(cost);
@@ -34,13 +33,6 @@ void prepareCountedReplay(CostMeasure cost, const TimedOnlyOptions& given, Repla
   options.warmup = std::max(options.warmup, 1);
 }
 
-void addCostOption(CLI::App& command, CostMeasure& cost, const std::string& help) {
-  command.add_option("--cost", cost, help)
-      ->transform(CLI::CheckedTransformer(std::map<std::string, CostMeasure>{
-          {"time", CostMeasure::Time}, {"instructions", CostMeasure::Instructions}, {"cycles", CostMeasure::Cycles}}))
-      ->default_str("time");
-}
-
 void prepareCountedContext(VulkanContext& vk, CostMeasure cost) {
   if (cost == CostMeasure::Time) return;
   if (!vk.info.isLavapipe)
@@ -50,4 +42,4 @@ void prepareCountedContext(VulkanContext& vk, CostMeasure cost) {
   vk.settleAfterSubmit = true;
 }
 
-}  // namespace aor::cli
+}  // namespace aor

@@ -1,4 +1,4 @@
-#include "import/subprocess.h"
+#include "core/subprocess.h"
 
 #include <fcntl.h>
 #include <signal.h>

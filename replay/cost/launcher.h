@@ -9,7 +9,7 @@
 
 #include "cost/callgrind_counter.h"
 
-namespace aor::cli {
+namespace aor {
 
 // main() keeps the command line for the re-execution.
 void rememberCommandLine(int argc, char** argv);
@@ -21,4 +21,4 @@ int runUnderCallgrind(CostMeasure measure);
 // The valgrind arguments for `measure` (cache sizes pinned for cycles), before the program.
 std::vector<std::string> callgrindArguments(CostMeasure measure, const std::string& outFile);
 
-}  // namespace aor::cli
+}  // namespace aor

@@ -1,0 +1,14 @@
+#pragma once
+// `--cost time|instructions|cycles` of `run`, `sweep` and `ab` (README, "Counted cost").
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cost/callgrind_counter.h"
+
+namespace aor::cli {
+
+// --cost time|instructions|cycles, with `help` after the choices.
+void addCostOption(CLI::App& command, CostMeasure& cost, const std::string& help);
+
+}  // namespace aor::cli
