@@ -3,31 +3,31 @@
 // which also counts the depth taps by the MIP level the sampler reads (--debug mip_taps).
 #include "xegtao.h"
 
-layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
+layout(local_size_x = kHorizonWorkgroupSize, local_size_y = kHorizonWorkgroupSize) in;
 layout(constant_id = kXeGtaoSpecSlices) const int kSlices = 3;
 layout(constant_id = kXeGtaoSpecSteps) const int kSteps = 3;
-layout(constant_id = kXeGtaoSpecBent) const bool kBent = false;
+layout(constant_id = kHorizonSpecBent) const bool kBent = false;
 layout(constant_id = kXeGtaoSpecThin) const bool kThin = false;
-layout(constant_id = kXeGtaoSpecDepth32) const bool kDepth32 = false;
+layout(constant_id = kHorizonSpecDepth32) const bool kDepth32 = false;
 layout(constant_id = kXeGtaoSpecSampleDistributionPower) const float kSampleDistributionPower = 2.0;
 
-layout(push_constant, scalar) uniform Push { XeGtaoConstants pc; };
+layout(push_constant, scalar) uniform Push { HorizonConstants pc; };
 layout(set = 0, binding = 0) uniform sampler2D depthMips;   // pass 1's chain, nearest (texels and levels), clamped
 layout(set = 0, binding = 1, rgba16f) uniform readonly image2D viewNormals;  // the front's, this tool's view space
 layout(set = 0, binding = 2) uniform writeonly uimage2D workingAoTerm;       // R8_UINT (R32_UINT with bent normals)
 layout(set = 0, binding = 3) uniform writeonly image2D workingEdges;         // R8_UNORM
 #ifdef XEGTAO_COUNT_TAPS
-layout(set = 0, binding = 4, std430) buffer MipTaps { uint mipTaps[kXeGtaoDepthMipLevels]; };
-shared uint groupTaps[kXeGtaoDepthMipLevels];
+layout(set = 0, binding = 4, std430) buffer MipTaps { uint mipTaps[kHorizonDepthMipLevels]; };
+shared uint groupTaps[kHorizonDepthMipLevels];
 #endif
 
-#include "xegtao_common.glsl"
+#include "horizon/horizon_common.glsl"
 
 #ifdef XEGTAO_COUNT_TAPS
 bool countingThread = false;  // a thread of a pixel in the frame (not one past its edge)
 // The level a nearest-mipmap sampler reads for `lod` (rounded to nearest, within the chain).
 void countTap(float lod) {
-  if (countingThread) atomicAdd(groupTaps[clamp(int(floor(lod + 0.5)), 0, kXeGtaoDepthMipLevels - 1)], 1u);
+  if (countingThread) atomicAdd(groupTaps[clamp(int(floor(lod + 0.5)), 0, kHorizonDepthMipLevels - 1)], 1u);
 }
 #else
 void countTap(float lod) {}
@@ -36,8 +36,8 @@ void countTap(float lod) {}
 // XeGTAO_OutputWorkingTerm: visibility scaled into UNORM range by 1 / 1.5, 8 bits (with the bent
 // normal as RGBA8).
 void storeWorkingTerm(ivec2 pixel, float visibility, vec3 bentNormal) {
-  visibility = clamp(visibility / kXeGtaoOcclusionTermScale, 0.0, 1.0);
-  uint packedValue = kBent ? xegtaoPackUnorm8x4(vec4(bentNormal * 0.5 + 0.5, visibility)) : uint(visibility * 255.0 + 0.5);
+  visibility = clamp(visibility / kHorizonOcclusionTermScale, 0.0, 1.0);
+  uint packedValue = kBent ? horizonPackUnorm8x4(vec4(bentNormal * 0.5 + 0.5, visibility)) : uint(visibility * 255.0 + 0.5);
   imageStore(workingAoTerm, pixel, uvec4(packedValue));
 }
 
@@ -77,7 +77,7 @@ float falloffWeight(vec3 delta, float dist, Falloff falloff) {
 vec3 tapPosition(vec2 samplePos, float mipLevel) {
   float sampleZ = textureLod(depthMips, samplePos, mipLevel).x;
   countTap(mipLevel);
-  return xegtaoViewPosition(samplePos, sampleZ);
+  return horizonViewPosition(samplePos, sampleZ);
 }
 
 // Algorithm 1 of the GTAO paper as XeGTAO_MainPass runs it: per slice the projected normal's angle,
@@ -91,10 +91,10 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
   vec2 pixelDirRBViewspaceSizeAtCenterZ = vec2(viewZ) * pc.ndcToViewMulXPixelSize;
   float screenspaceRadius = effectRadius / pixelDirRBViewspaceSizeAtCenterZ.x;
   visibility += clamp((10.0 - screenspaceRadius) / 100.0, 0.0, 1.0) * 0.5;  // fade out for small screen radii
-  float minS = kXeGtaoPixelTooClose / screenspaceRadius;  // never sample the centre pixel
+  float minS = kHorizonPixelTooClose / screenspaceRadius;  // never sample the centre pixel
 
   for (float slice = 0.0; slice < sliceCount; slice += 1.0) {
-    float phi = ((slice + noise.x) / sliceCount) * kXeGtaoPi;
+    float phi = ((slice + noise.x) / sliceCount) * kHorizonPi;
     float cosPhi = cos(phi), sinPhi = sin(phi);
     vec2 omega = vec2(cosPhi, -sinPhi) * screenspaceRadius;  // pixels, y down
     vec3 directionVec = vec3(cosPhi, sinPhi, 0.0);
@@ -104,9 +104,9 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
     float signNorm = sign(dot(orthoDirectionVec, projectedNormalVec));
     float projectedNormalVecLength = length(projectedNormalVec);
     float cosNorm = clamp(dot(projectedNormalVec, viewVec) / projectedNormalVecLength, 0.0, 1.0);
-    float n = signNorm * xegtaoFastAcos(cosNorm);
-    float lowHorizonCos0 = cos(n + kXeGtaoHalfPi);
-    float lowHorizonCos1 = cos(n - kXeGtaoHalfPi);
+    float n = signNorm * horizonFastAcos(cosNorm);
+    float lowHorizonCos0 = cos(n + kHorizonHalfPi);
+    float lowHorizonCos1 = cos(n - kHorizonHalfPi);
     float horizonCos0 = lowHorizonCos0, horizonCos1 = lowHorizonCos1;
 
     [[unroll]] for (float stepIndex = 0.0; stepIndex < stepsPerSlice; stepIndex += 1.0) {
@@ -120,7 +120,7 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
       // function a tap) made the main pass 1.6-2 % slower than XeGTAO's on an H200 (same
       // registers, same results), and one tap's horizon between the two taps 5 % on lavapipe.
       vec2 sampleOffset = s * omega;
-      float mipLevel = clamp(log2(length(sampleOffset)) - pc.depthMipSamplingOffset, 0.0, float(kXeGtaoDepthMipLevels));
+      float mipLevel = clamp(log2(length(sampleOffset)) - pc.depthMipSamplingOffset, 0.0, float(kHorizonDepthMipLevels));
       sampleOffset = roundEven(sampleOffset) * pc.viewportPixelSize;  // snapped to pixel centres (HLSL round: halves to even)
       vec3 samplePos0 = tapPosition(screenPos + sampleOffset, mipLevel);
       vec3 samplePos1 = tapPosition(screenPos - sampleOffset, mipLevel);
@@ -141,8 +141,8 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
     }
 
     projectedNormalVecLength = mix(projectedNormalVecLength, 1.0, 0.05);  // XeGTAO's slope fudge
-    float h0 = -xegtaoFastAcos(horizonCos1);
-    float h1 = xegtaoFastAcos(horizonCos0);
+    float h0 = -horizonFastAcos(horizonCos1);
+    float h1 = horizonFastAcos(horizonCos0);
     float iarc0 = (cosNorm + 2.0 * h0 * sin(n) - cos(2.0 * h0 - n)) / 4.0;
     float iarc1 = (cosNorm + 2.0 * h1 * sin(n) - cos(2.0 * h1 - n)) / 4.0;
     visibility += projectedNormalVecLength * (iarc0 + iarc1);
@@ -157,14 +157,14 @@ float horizonSearch(vec2 screenPos, vec3 centre, vec3 viewVec, vec3 normal, floa
   }
   visibility /= sliceCount;
   visibility = pow(visibility, pc.finalValuePower);
-  visibility = max(kXeGtaoVisibilityFloor, visibility);
+  visibility = max(kHorizonVisibilityFloor, visibility);
   if (kBent) bentNormal = normalize(bentNormal);
   return visibility;
 }
 
 void main() {
 #ifdef XEGTAO_COUNT_TAPS
-  if (gl_LocalInvocationIndex < uint(kXeGtaoDepthMipLevels)) groupTaps[gl_LocalInvocationIndex] = 0u;
+  if (gl_LocalInvocationIndex < uint(kHorizonDepthMipLevels)) groupTaps[gl_LocalInvocationIndex] = 0u;
   barrier();
 #endif
   // Straight-line code as XeGTAO's (no branch around the work): a thread past the edge computes
@@ -177,18 +177,18 @@ void main() {
 #endif
   // vaGTAO's CSGTAOHigh order: the noise and the normal, then XeGTAO_MainPass's body (the order
   // is part of the main pass's speed on an H200: see the step loop).
-  vec2 noise = xegtaoNoise(uvec2(pixel), uint(pc.noiseIndex));
-  vec3 normal = normalize(xegtaoFromToolView(imageLoad(viewNormals, pixel).xyz));  // LoadNormal normalises
+  vec2 noise = horizonNoise(uvec2(pixel), uint(pc.noiseIndex));
+  vec3 normal = normalize(horizonFromToolView(imageLoad(viewNormals, pixel).xyz));  // LoadNormal normalises
   vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
   vec2 cornerPos = vec2(pixel) * pc.viewportPixelSize;
   vec4 valuesUL = textureGather(depthMips, cornerPos);                    // x L, y centre, z T
   vec4 valuesBR = textureGatherOffset(depthMips, cornerPos, ivec2(1, 1));  // x B, z R
   float viewZ = valuesUL.y;
-  vec4 edges = xegtaoEdges(viewZ, valuesUL.x, valuesBR.z, valuesUL.z, valuesBR.x);
-  if (inside) imageStore(workingEdges, pixel, vec4(xegtaoPackEdges(edges)));
+  vec4 edges = horizonEdges(viewZ, valuesUL.x, valuesBR.z, valuesUL.z, valuesBR.x);
+  if (inside) imageStore(workingEdges, pixel, vec4(horizonPackEdges(edges)));
 
-  viewZ *= kDepth32 ? kXeGtaoDepth32PullIn : kXeGtaoDepth16PullIn;  // against depth imprecision
-  vec3 centre = xegtaoViewPosition(screenPos, viewZ);
+  viewZ *= kDepth32 ? kHorizonDepth32PullIn : kHorizonDepth16PullIn;  // against depth imprecision
+  vec3 centre = horizonViewPosition(screenPos, viewZ);
   vec3 viewVec = normalize(-centre);
   vec3 bentNormal;
   float visibility = horizonSearch(screenPos, centre, viewVec, normal, viewZ, noise, bentNormal);
@@ -196,7 +196,7 @@ void main() {
   if (inside) storeWorkingTerm(pixel, visibility, bentNormal);
 #ifdef XEGTAO_COUNT_TAPS
   barrier();
-  if (gl_LocalInvocationIndex < uint(kXeGtaoDepthMipLevels))
+  if (gl_LocalInvocationIndex < uint(kHorizonDepthMipLevels))
     atomicAdd(mipTaps[gl_LocalInvocationIndex], groupTaps[gl_LocalInvocationIndex]);
 #endif
 }

@@ -1,36 +1,19 @@
 #ifndef AOR_XEGTAO_H
 #define AOR_XEGTAO_H
-// XeGTAO (seed 002) as a port: the constants its three passes share (XeGTAO.h's GTAOConstants, in
-// the same order and at the same offsets, plus the two axis signs this tool needs to hand it
-// view-space normals), its defaults, and the spatio-temporal noise, shared by the shaders and C++.
-// What each value is, and where it comes from in XeGTAO: replay/techniques/xegtao/README.md.
+// XeGTAO (seed 002) as a port: its main pass's specialisation ids and XeGTAO.h's defaults, shared
+// by the shaders and C++; the constants struct, shared constants and noise are the horizon
+// blocks' (horizon/horizon.h). Where each value comes from: replay/techniques/xegtao/README.md.
+#include "../horizon/horizon.h"
 #include "../common/shared_begin.h"
 
-// Specialisation constant ids (main pass and denoiser).
+// Specialisation constant ids of the main pass (2, 4 and 6 are the shared blocks').
 AOR_CONST int kXeGtaoSpecSlices = 0;
 AOR_CONST int kXeGtaoSpecSteps = 1;
-AOR_CONST int kXeGtaoSpecBent = 2;        // XE_GTAO_COMPUTE_BENT_NORMALS
 AOR_CONST int kXeGtaoSpecThin = 3;        // the thin-occluder falloff (thin_occluder_compensation > 0)
-AOR_CONST int kXeGtaoSpecDepth32 = 4;     // XE_GTAO_FP32_DEPTHS: the centre pull-in of 32-bit depths
 // sample_distribution_power as a compile-time value (its float bits): pow(s, 2) then compiles to
 // s * s, as XeGTAO gets with XE_GTAO_USE_DEFAULT_CONSTANTS; a power per sample is most of the main
 // pass's arithmetic on a CPU device.
 AOR_CONST int kXeGtaoSpecSampleDistributionPower = 5;
-AOR_CONST int kXeGtaoSpecReversedDepth = 6;  // the sky pass: the capture's depth convention
-
-AOR_CONST int kXeGtaoDepthMipLevels = 5;         // XE_GTAO_DEPTH_MIP_LEVELS
-AOR_CONST uint kXeGtaoWorkgroupSize = 8u;        // XE_GTAO_NUMTHREADS_X/Y (the prefilter: 8x8 threads, 2x2 pixels each, 16x16 a group)
-AOR_CONST float kXeGtaoOcclusionTermScale = 1.5f;  // XE_GTAO_OCCLUSION_TERM_SCALE
-AOR_CONST float kXeGtaoDepth16PullIn = 0.99920f;   // centre depth moved towards the camera, R16F chain
-AOR_CONST float kXeGtaoDepth32PullIn = 0.99999f;   // the same, R32F chain
-AOR_CONST float kXeGtaoMaxDepth = 65504.0f;        // XeGTAO_ClampDepth's upper bound (see README: always fp16's)
-AOR_CONST float kXeGtaoPixelTooClose = 1.3f;       // pixelTooCloseThreshold
-AOR_CONST float kXeGtaoVisibilityFloor = 0.03f;
-AOR_CONST float kXeGtaoEdgeSensitivity = 0.011f;   // XeGTAO_CalculateEdges: |dz| against 1.1 % of z
-AOR_CONST float kXeGtaoDenoiseBlurBeta = 1.2f;     // DenoiseBlurBeta with denoising on
-AOR_CONST float kXeGtaoDiagonalWeight = 0.425f;    // 0.85 * 0.5
-AOR_CONST uint kXeGtaoNoisePeriod = 64u;           // NoiseIndex = frame % 64
-AOR_CONST uint kXeGtaoNoiseFrameStride = 288u;     // Hilbert index offset per noise frame
 
 // XeGTAO.h's defaults (XE_GTAO_DEFAULT_*).
 AOR_CONST float kXeGtaoDefaultRadiusMultiplier = 1.457f;
@@ -39,58 +22,6 @@ AOR_CONST float kXeGtaoDefaultSampleDistributionPower = 2.0f;
 AOR_CONST float kXeGtaoDefaultThinOccluderCompensation = 0.0f;
 AOR_CONST float kXeGtaoDefaultFinalValuePower = 2.2f;
 AOR_CONST float kXeGtaoDefaultDepthMipSamplingOffset = 3.30f;
-
-// GTAOConstants, member for member (96 bytes, no member straddling 16 bytes: the same offsets under
-// HLSL cbuffer packing and scalar layout), then the axis signs.
-struct XeGtaoConstants {
-  ivec2 viewportSize;
-  vec2 viewportPixelSize;
-  vec2 depthUnpackConsts;      // view z = x / (y - depth)
-  vec2 cameraTanHalfFov;
-  vec2 ndcToViewMul;           // XeGTAO's view space (x right, y up, z forward) from [0,1] screen uv
-  vec2 ndcToViewAdd;
-  vec2 ndcToViewMulXPixelSize;
-  float effectRadius;
-  float effectFalloffRange;
-  float radiusMultiplier;
-  float padding0;
-  float finalValuePower;
-  float denoiseBlurBeta;
-  float sampleDistributionPower;
-  float thinOccluderCompensation;
-  float depthMipSamplingOffset;
-  int noiseIndex;
-  // Not XeGTAO's: signs taking this tool's view space (-z forward, the capture's axes) to XeGTAO's
-  // for x and y (z always flips). Normals are turned by them on input, bent normals on output.
-  vec2 viewAxisSigns;
-};
-
-// XeGTAO.h HilbertIndex: index of (x, y) along the Hilbert curve filling a 64x64 tile.
-AOR_FUNC uint xegtaoHilbertIndex(uint x, uint y) {
-  uint index = 0u;
-  for (uint level = 32u; level > 0u; level /= 2u) {
-    uint rx = (x & level) > 0u ? 1u : 0u;
-    uint ry = (y & level) > 0u ? 1u : 0u;
-    index += level * level * ((3u * rx) ^ ry);
-    if (ry == 0u) {
-      if (rx == 1u) {
-        x = 63u - x;
-        y = 63u - y;
-      }
-      uint swap = x;
-      x = y;
-      y = swap;
-    }
-  }
-  return index;
-}
-
-// vaGTAO.hlsl SpatioTemporalNoise: the Hilbert index (offset 288 per noise frame) into the R2
-// sequence. x drives the slice angle, y the step positions. The index wraps in uint32 as XeGTAO's.
-AOR_FUNC vec2 xegtaoNoise(uvec2 pixel, uint noiseIndex) {
-  uint index = xegtaoHilbertIndex(pixel.x, pixel.y) + kXeGtaoNoiseFrameStride * (noiseIndex % kXeGtaoNoisePeriod);
-  return fract(vec2(0.5f) + float(index) * vec2(0.75487766624669276005f, 0.5698402909980532659114f));
-}
 
 #include "../common/shared_end.h"
 #endif

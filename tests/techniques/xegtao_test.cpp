@@ -28,7 +28,7 @@ TEST(XeGtaoNoise, HilbertIndexVisitsEveryTexelOfTheTileOnceAlongNeighbours) {
   std::vector<glm::ivec2> at(64 * 64, glm::ivec2(-1));
   for (uint32_t y = 0; y < 64; ++y)
     for (uint32_t x = 0; x < 64; ++x) {
-      uint32_t index = shader::xegtaoHilbertIndex(x, y);
+      uint32_t index = shader::horizonHilbertIndex(x, y);
       ASSERT_LT(index, 64u * 64u);
       EXPECT_EQ(at[index], glm::ivec2(-1)) << x << "," << y << " shares index " << index;
       at[index] = glm::ivec2(x, y);
@@ -38,11 +38,11 @@ TEST(XeGtaoNoise, HilbertIndexVisitsEveryTexelOfTheTileOnceAlongNeighbours) {
     EXPECT_EQ(step.x + step.y, 1) << "index " << i << " is not next to index " << i - 1;
   }
   // The curve tiles the screen: pixel (x + 64, y) takes the noise of (x, y).
-  EXPECT_EQ(shader::xegtaoHilbertIndex(70, 3), shader::xegtaoHilbertIndex(6, 3));
+  EXPECT_EQ(shader::horizonHilbertIndex(70, 3), shader::horizonHilbertIndex(6, 3));
 }
 
 TEST(XeGtaoNoise, FramesSixtyFourApartShareTheirNoiseAndNeighboursDoNot) {
-  glm::vec2 a = shader::xegtaoNoise({5, 9}, 3), b = shader::xegtaoNoise({5, 9}, 3 + 64), c = shader::xegtaoNoise({5, 9}, 4);
+  glm::vec2 a = shader::horizonNoise({5, 9}, 3), b = shader::horizonNoise({5, 9}, 3 + 64), c = shader::horizonNoise({5, 9}, 4);
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
   for (float v : {a.x, a.y, c.x, c.y}) {

@@ -1,6 +1,7 @@
 #pragma once
-// XeGTAO (seed 002): a run's settings as XeGTAO.h's GTAOSettings holds them, and the per-frame
-// constants of its three passes (XeGTAO.h GTAOUpdateConstants, from this tool's camera).
+// XeGTAO (seed 002): a run's settings as XeGTAO.h's GTAOSettings holds them, and its main pass
+// (the other passes are the shared horizon blocks, shared_passes/horizon_blocks.h).
+#include "shared_passes/horizon_blocks.h"
 #include "technique_api/frame_builder.h"
 #include "technique_api/settings.h"
 #include "xegtao/xegtao.h"
@@ -20,27 +21,18 @@ struct XeGtaoSettings {
   bool depth32 = false;
   bool bent = false;
   float temporal = 0.0f;
+
+  // What the shared blocks read.
+  shared_passes::HorizonBlockSettings blocks() const {
+    return {radius, radiusMultiplier, falloffRange, finalValuePower, sampleDistributionPower, thinOccluderCompensation,
+            depthMipSamplingOffset, denoisePasses, depth32, bent};
+  }
 };
 
 XeGtaoSettings xegtaoSettings(const Settings& settings);
 
-// GTAOUpdateConstants for this frame: XeGTAO's view space (x right, y up, z forward) is this
-// tool's with z flipped and x, y flipped where the capture's projection points them the other way.
-shader::XeGtaoConstants xegtaoConstants(const FrameCamera& camera, const XeGtaoSettings& settings);
-
-// The three passes; each returns what it writes.
-struct XeGtaoWorking {
-  graph::ResourceId aoTerm = graph::kNoResource;  // R8_UINT (R32_UINT with bent normals)
-  graph::ResourceId edges = graph::kNoResource;   // R8_UNORM
-};
-// The 5-level view-z chain (R16F, R32F with depth32).
-graph::ResourceId addXeGtaoPrefilter(FrameBuilder& frame, const XeGtaoSettings& settings);
+// Pass 2, between the shared depth chain and denoiser: the working term and edges.
+using XeGtaoWorking = shared_passes::HorizonWorking;
 XeGtaoWorking addXeGtaoMainPass(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips);
-// denoise_passes dispatches; the last writes R16F visibility (RGBA16F bent.xyz + visibility).
-graph::ResourceId addXeGtaoDenoise(FrameBuilder& frame, const XeGtaoSettings& settings, const XeGtaoWorking& working);
-// Not XeGTAO's: the shared front's sky rule applied to the denoised output in place (sky.comp).
-void addXeGtaoSky(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId denoised);
-// --debug screen_radius: the main pass's screen-space radius per pixel (R32F).
-graph::ResourceId addXeGtaoScreenRadius(FrameBuilder& frame, const XeGtaoSettings& settings, graph::ResourceId depthMips);
 
 }  // namespace aor

@@ -1,8 +1,6 @@
 // Seed 002: Intel's XeGTAO (depth prefilter -> main pass -> edge-aware denoise), as a technique
 // module: its settings under XeGTAO's names and defaults, its quality presets, its passes (in
 // xegtao_passes.cpp), the shared temporal block as an option. Point by point: README.md here.
-#include <fmt/format.h>
-
 #include "shared_passes/shared_passes.h"
 #include "technique_api/key_table.h"
 #include "techniques/registry.h"
@@ -40,16 +38,15 @@ const KeyTable<XeGtaoSettings>& keyTable() {
 
 void addXeGtaoPipeline(FrameBuilder& frame, const Settings& settings) {
   XeGtaoSettings x = xegtaoSettings(settings);
-  auto mips = addXeGtaoPrefilter(frame, x);
+  auto blocks = x.blocks();
+  auto mips = shared_passes::addHorizonDepthMips(frame, blocks, "xegtao_prefilter");
   auto working = addXeGtaoMainPass(frame, x, mips);
-  auto denoised = addXeGtaoDenoise(frame, x, working);
-  addXeGtaoSky(frame, x, denoised);
+  auto denoised = shared_passes::addHorizonDenoise(frame, blocks, working, "xegtao_denoise");
+  shared_passes::addHorizonSky(frame, blocks, denoised, "xegtao_sky");
 
-  frame.debugView("linear_depth", mips, {0, 1, 0, 1});
-  uint32_t levels = frame.graph().resources().at(mips).desc.mipLevels;
-  for (uint32_t k = 1; k < levels; ++k) frame.debugView(fmt::format("depth_mip{}", k), mips, {k, 1, 0, 1});
+  shared_passes::addHorizonDepthViews(frame, mips);
   frame.debugView("view_normals", frame.viewNormals());
-  frame.debugView("screen_radius", addXeGtaoScreenRadius(frame, x, mips));
+  frame.debugView("screen_radius", shared_passes::addHorizonScreenRadius(frame, blocks, mips, "xegtao_screen_radius"));
   frame.debugView("edges", working.edges);
   frame.debugView("ao_raw", working.aoTerm);
   frame.debugView("ao_denoised", denoised);

@@ -4,11 +4,11 @@
 // 16x16 pixels, each thread 2x2 of them; levels 2-4 reduce through shared memory.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-#include "xegtao.h"
+#include "horizon.h"
 
-layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
+layout(local_size_x = kHorizonWorkgroupSize, local_size_y = kHorizonWorkgroupSize) in;
 layout(push_constant, scalar) uniform Push {
-  XeGtaoConstants pc;
+  HorizonConstants pc;
   int mipLevels;  // levels the chain has: fewer than 5 for frames under 16 pixels a side
 };
 layout(set = 0, binding = 0) uniform sampler2D screenDepth;  // the capture's depth, nearest, clamped
@@ -19,7 +19,7 @@ layout(set = 0, binding = 3) uniform writeonly image2D depthMip2;
 layout(set = 0, binding = 4) uniform writeonly image2D depthMip3;
 layout(set = 0, binding = 5) uniform writeonly image2D depthMip4;
 
-#include "xegtao_common.glsl"
+#include "horizon_common.glsl"
 
 shared float scratchDepths[8][8];
 
@@ -73,16 +73,16 @@ bool reduceStep(uvec2 thread, uint stride, out float value) {
 
 void main() {
   setMipFilterFalloff();
-  ivec2 tileEnd = ivec2(gl_WorkGroupID.xy + 1u) * int(2u * kXeGtaoWorkgroupSize);
-  wholeTile = all(lessThanEqual(ivec3(tileEnd, kXeGtaoDepthMipLevels), ivec3(pc.viewportSize, mipLevels)));
+  ivec2 tileEnd = ivec2(gl_WorkGroupID.xy + 1u) * int(2u * kHorizonWorkgroupSize);
+  wholeTile = all(lessThanEqual(ivec3(tileEnd, kHorizonDepthMipLevels), ivec3(pc.viewportSize, mipLevels)));
   uvec2 base = gl_GlobalInvocationID.xy;
   uvec2 thread = gl_LocalInvocationID.xy;
   ivec2 pixel = ivec2(base * 2u);
   // The 2x2 quad whose top-left is `pixel`: gather at its centre (w, z, x, y = TL, TR, BL, BR).
   vec4 quad = textureGatherOffset(screenDepth, vec2(pixel) * pc.viewportPixelSize, ivec2(1, 1));
   vec4 screenDepths = quad.wzxy;  // TL, TR, BL, BR
-  vec4 viewZ = xegtaoUnclampedViewDepth(screenDepths);
-  vec4 depths = xegtaoClampDepth(viewZ);
+  vec4 viewZ = horizonUnclampedViewDepth(screenDepths);
+  vec4 depths = horizonClampDepth(viewZ);
   float d0 = depths.x, d1 = depths.y, d2 = depths.z, d3 = depths.w;
   if (inLevel(0, pixel)) imageStore(depthMip0, pixel, vec4(d0));
   if (inLevel(0, pixel + ivec2(1, 0))) imageStore(depthMip0, pixel + ivec2(1, 0), vec4(d1));

@@ -6,17 +6,17 @@
 // own so that XeGTAO's three passes stay XeGTAO's (README: "Sky and invalid depth").
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-#include "xegtao.h"
+#include "horizon.h"
 
-layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
-layout(constant_id = kXeGtaoSpecBent) const bool kBent = false;
-layout(constant_id = kXeGtaoSpecReversedDepth) const bool kReversedDepth = false;
-layout(push_constant, scalar) uniform Push { XeGtaoConstants pc; };
+layout(local_size_x = kHorizonWorkgroupSize, local_size_y = kHorizonWorkgroupSize) in;
+layout(constant_id = kHorizonSpecBent) const bool kBent = false;
+layout(constant_id = kHorizonSpecReversedDepth) const bool kReversedDepth = false;
+layout(push_constant, scalar) uniform Push { HorizonConstants pc; };
 layout(set = 0, binding = 0) uniform sampler2D screenDepth;   // the capture's depth, nearest, clamped
 layout(set = 0, binding = 1) uniform writeonly image2D outputAo;  // the last denoise pass's output, in place
 
-#include "xegtao_common.glsl"
-#include "xegtao_output.glsl"
+#include "horizon_common.glsl"
+#include "horizon_term.glsl"
 #include "../blocks/linearize_depth.h"
 
 // One pixel: if it is sky, what XeGTAO's last pass would store there for full visibility.
@@ -25,8 +25,8 @@ void storeIfSky(ivec2 pixel, float depth) {
   if (any(greaterThanEqual(pixel, pc.viewportSize))) return;
   if (linearViewDistance(depth, -pc.depthUnpackConsts.y, -pc.depthUnpackConsts.x, kReversedDepth) > 0.0) return;  // not sky
   vec2 screenPos = (vec2(pixel) + 0.5) * pc.viewportPixelSize;
-  vec4 term = vec4(-xegtaoViewPosition(screenPos, 1.0), 1.0 / kXeGtaoOcclusionTermScale);  // the view vector, unnormalised
-  imageStore(outputAo, pixel, xegtaoEngineValue(term));
+  vec4 term = vec4(-horizonViewPosition(screenPos, 1.0), 1.0 / kHorizonOcclusionTermScale);  // the view vector, unnormalised
+  imageStore(outputAo, pixel, horizonEngineValue(term));
 }
 
 // A 2x2 quad a thread, its depths in one gather (as the prefilter reads them): a quarter of the

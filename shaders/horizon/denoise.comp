@@ -1,7 +1,6 @@
 #version 450
-// XeGTAO pass 3, the last (or only) pass: denoise_body.glsl.
+// XeGTAO pass 3, a pass before the last (denoise_passes 2 and 3): denoise_body.glsl.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-#define XEGTAO_LAST_PASS
-#include "xegtao.h"
+#include "horizon.h"
 #include "denoise_body.glsl"

@@ -1,22 +1,22 @@
 // XeGTAO pass 3 (XeGTAO_Denoise): the edge-aware 3x3 blur, each thread two horizontally adjacent
 // pixels from seven gathers. Built as denoise.comp (a pass before the last: the working term out,
-// blur beta / 5) and denoise_last.comp (XEGTAO_LAST_PASS: full beta, the term scaled back by 1.5
+// blur beta / 5) and denoise_last.comp (HORIZON_LAST_PASS: full beta, the term scaled back by 1.5
 // and decoded as XeGTAO's consumer reads its 8-bit output, written as float for the shared blocks
 // and the read-back).
-layout(local_size_x = kXeGtaoWorkgroupSize, local_size_y = kXeGtaoWorkgroupSize) in;
-layout(constant_id = kXeGtaoSpecBent) const bool kBent = false;
+layout(local_size_x = kHorizonWorkgroupSize, local_size_y = kHorizonWorkgroupSize) in;
+layout(constant_id = kHorizonSpecBent) const bool kBent = false;
 
 layout(set = 0, binding = 0) uniform usampler2D sourceAoTerm;  // R8_UINT (R32_UINT with bent normals), nearest, clamped
 layout(set = 0, binding = 1) uniform sampler2D sourceEdges;    // R8_UNORM packed edges
-layout(push_constant, scalar) uniform Push { XeGtaoConstants pc; };
-#ifdef XEGTAO_LAST_PASS
+layout(push_constant, scalar) uniform Push { HorizonConstants pc; };
+#ifdef HORIZON_LAST_PASS
 layout(set = 0, binding = 2) uniform writeonly image2D outputAo;  // R16F visibility, or RGBA16F bent.xyz + visibility
 #else
 layout(set = 0, binding = 2) uniform writeonly uimage2D outputAo;  // the working term again
 #endif
 
-#include "xegtao_common.glsl"
-#include "xegtao_output.glsl"
+#include "horizon_common.glsl"
+#include "horizon_term.glsl"
 
 // XeGTAO_DecodeGatherPartial.
 void decodeQuad(uvec4 packedValues, out vec4 decoded[4]) {
@@ -27,15 +27,15 @@ void decodeQuad(uvec4 packedValues, out vec4 decoded[4]) {
 // leaves it to the engine: every pass here blends and stores XeGTAO's own values at sky pixels.
 void storeTerm(ivec2 pixel, vec4 term) {
   if (any(greaterThanEqual(pixel, pc.viewportSize))) return;
-#ifdef XEGTAO_LAST_PASS
-  imageStore(outputAo, pixel, xegtaoEngineValue(term));
+#ifdef HORIZON_LAST_PASS
+  imageStore(outputAo, pixel, horizonEngineValue(term));
 #else
-  imageStore(outputAo, pixel, uvec4(xegtaoPackTerm(term, 1.0)));
+  imageStore(outputAo, pixel, uvec4(horizonPackTerm(term, 1.0)));
 #endif
 }
 
 void main() {
-#ifdef XEGTAO_LAST_PASS
+#ifdef HORIZON_LAST_PASS
   float blurAmount = pc.denoiseBlurBeta;
 #else
   float blurAmount = pc.denoiseBlurBeta / 5.0;
@@ -55,11 +55,11 @@ void main() {
 
   for (int side = 0; side < 2; ++side) {
     bool left = side == 0;
-    vec4 edgesL = xegtaoUnpackEdges(left ? edgesQ0.x : edgesQ0.y);
-    vec4 edgesT = xegtaoUnpackEdges(left ? edgesQ0.z : edgesQ1.w);
-    vec4 edgesR = xegtaoUnpackEdges(left ? edgesQ1.x : edgesQ1.y);
-    vec4 edgesB = xegtaoUnpackEdges(left ? edgesQ2.w : edgesQ2.z);
-    vec4 edgesC = xegtaoUnpackEdges(left ? edgesQ0.y : edgesQ1.x);
+    vec4 edgesL = horizonUnpackEdges(left ? edgesQ0.x : edgesQ0.y);
+    vec4 edgesT = horizonUnpackEdges(left ? edgesQ0.z : edgesQ1.w);
+    vec4 edgesR = horizonUnpackEdges(left ? edgesQ1.x : edgesQ1.y);
+    vec4 edgesB = horizonUnpackEdges(left ? edgesQ2.w : edgesQ2.z);
+    vec4 edgesC = horizonUnpackEdges(left ? edgesQ0.y : edgesQ1.x);
     // Symmetric edges: each side also as its neighbour sees it.
     edgesC *= vec4(edgesL.y, edgesR.x, edgesT.w, edgesB.z);
     // A little leaking where three or four sides are edges (less aliasing).
@@ -67,10 +67,10 @@ void main() {
     float edginess = (clamp(4.0 - leakThreshold - dot(edgesC, vec4(1.0)), 0.0, 1.0) / (4.0 - leakThreshold)) * leakStrength;
     edgesC = clamp(edgesC + edginess, 0.0, 1.0);
 
-    float weightTL = kXeGtaoDiagonalWeight * (edgesC.x * edgesL.z + edgesC.z * edgesT.x);
-    float weightTR = kXeGtaoDiagonalWeight * (edgesC.z * edgesT.y + edgesC.y * edgesR.z);
-    float weightBL = kXeGtaoDiagonalWeight * (edgesC.w * edgesB.x + edgesC.x * edgesL.w);
-    float weightBR = kXeGtaoDiagonalWeight * (edgesC.y * edgesR.w + edgesC.w * edgesB.y);
+    float weightTL = kHorizonDiagonalWeight * (edgesC.x * edgesL.z + edgesC.z * edgesT.x);
+    float weightTR = kHorizonDiagonalWeight * (edgesC.z * edgesT.y + edgesC.y * edgesR.z);
+    float weightBL = kHorizonDiagonalWeight * (edgesC.w * edgesB.x + edgesC.x * edgesL.w);
+    float weightBR = kHorizonDiagonalWeight * (edgesC.y * edgesR.w + edgesC.w * edgesB.y);
 
     vec4 centre = left ? visQ0[1] : visQ1[0];
     vec4 valueL = left ? visQ0[0] : visQ0[1];
