@@ -14,6 +14,8 @@
 namespace aor::shared_passes {
 namespace {
 
+constexpr float kHardEdgeFalloffRange = 1e-4f;
+
 // Levels of the depth chain: XeGTAO's five, fewer where the frame is too small for them.
 uint32_t depthMipLevels(glm::uvec2 size) {
   uint32_t levels = 1;
@@ -43,7 +45,9 @@ shader::HorizonConstants horizonConstants(const FrameCamera& camera, const Horiz
   c.ndcToViewAdd = forward.ndcToViewAdd;
   c.ndcToViewMulXPixelSize = c.ndcToViewMul * c.viewportPixelSize;
   c.effectRadius = settings.radius;
-  c.effectFalloffRange = settings.falloffRange;
+  // 0 is a hard edge at the radius: XeGTAO's weight divides by the range (0/0 there), so the
+  // passes get a range too short to matter instead; any range from 1e-4 up is kept as given.
+  c.effectFalloffRange = std::max(settings.falloffRange, kHardEdgeFalloffRange);
   c.radiusMultiplier = settings.radiusMultiplier;
   c.padding0 = 0.0f;
   c.finalValuePower = settings.finalValuePower;
