@@ -9,9 +9,11 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "capture/image_io.h"
 #include "gpu_test_support.h"
+#include "techniques/registry.h"
 #include "vbao/vbao.h"
 
 namespace aor::test {
@@ -118,6 +120,96 @@ TEST(Vbao, InfiniteThicknessCosineEqualsXegtaoWithinOneSectorASideOnEveryShipped
     // On average a side loses about half a sector, mostly far less than the grazing worst case.
     EXPECT_LT(mean, 0.125 * bound) << capture;
   }
+}
+
+TEST(Vbao, EveryPresetAndWeightingRunsValidationClean) {
+  std::vector<std::string> variants;
+  for (const char* preset : {"low", "medium", "high", "ultra"})
+    for (const char* weighting : {"uniform", "cosine"})
+      variants.push_back(fmt::format("--preset {} --set weighting={}", preset, weighting));
+  variants.push_back("--set depth32=1 --set denoise_passes=3 --set sectors=7 --set temporal=0.9 --debug sectors");
+  variants.push_back("--set sectors=0 --set weighting=uniform --preset ultra");
+  for (size_t i = 0; i < variants.size(); ++i) {
+    fs::path out = scratchDir(fmt::format("vbao-validate-{}", i)) / "out";
+    auto r = runAoreplay(fmt::format("run {} --technique vbao {} --frames 0:3 --validate --no-images --out {}",
+                                     shipped("boxes-strafe").string(), variants[i], out.string()));
+    EXPECT_EQ(r.exitCode, 0) << variants[i] << "\n" << r.output;
+    EXPECT_NE(r.output.find("validation: 0 messages"), std::string::npos) << variants[i] << "\n" << r.output;
+  }
+}
+
+TEST(Vbao, ReplaysBitIdenticallyTwice) {
+  for (const char* weighting : {"weighting=uniform", "weighting=cosine"}) {
+    std::vector<std::string> settings{weighting, "depth32=1", "denoise_passes=2", "thickness=0.1", "temporal=0.8"};
+    auto first = replayWithSettings(shipped("thin-strafe"), "vbao", settings, 0, 4);
+    auto second = replayWithSettings(shipped("thin-strafe"), "vbao", settings, 0, 4);
+    ASSERT_EQ(first.frames.size(), 4u);
+    ASSERT_EQ(second.frames.size(), 4u);
+    for (size_t i = 0; i < first.frames.size(); ++i)
+      EXPECT_TRUE(bitIdentical(first.frames[i].visibility, second.frames[i].visibility)) << weighting << " frame " << i;
+  }
+}
+
+// What the slab does: thinner slabs let light pass behind thin occluders, so mean visibility grows
+// as thickness shrinks; the weighting changes the answer.
+TEST(Vbao, ThinnerSlabsOccludeLessAndTheWeightingMatters) {
+  auto meanOf = [](const std::vector<std::string>& settings) {
+    auto run = replayWithSettings(shipped("thin-depth2"), "vbao", settings, 0, 1);
+    double sum = 0;
+    for (float v : run.frames.at(0).visibility) sum += v;
+    return sum / double(run.frames.at(0).visibility.size());
+  };
+  double thin = meanOf({"thickness=0.05"}), medium = meanOf({"thickness=0.25"}), thick = meanOf({"thickness=1e6"});
+  std::cout << fmt::format("thin-depth2 mean visibility: thickness 0.05 {:.4f}, 0.25 {:.4f}, 1e6 {:.4f}\n", thin, medium, thick);
+  EXPECT_GT(thin, medium);
+  EXPECT_GT(medium, thick);
+  EXPECT_NE(meanOf({"weighting=uniform"}), medium);
+}
+
+struct HaloBand {
+  double rmse = 0, bias = 0;
+};
+
+HaloBand haloBandAtDefaults(const std::string& technique) {
+  fs::path out = scratchDir("vbao-halo-" + technique) / "out";
+  auto r = runAoreplay(fmt::format("run {} --technique {} --no-images --out {}", shipped("thin-depth2").string(), technique,
+                                   out.string()));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  auto band = nlohmann::json::parse(readText(out / "report.json"))["metrics"]["error"]["halo_band"];
+  return {band["rmse"].get<double>(), band["bias"].get<double>()};
+}
+
+// Issue 50: the measured ordering on thin-depth2 at every technique's defaults (README, "Thin
+// occluders"). vbao has the lowest halo-band RMSE of the three and a smaller |bias| than gtao;
+// xegtao's |bias| is smaller than vbao's, not larger as the paper's claim would have it: gtao and
+// vbao are too bright in this band, and xegtao's final_value_power 2.2, which darkens everything,
+// overshoots it to too dark by less.
+TEST(Vbao, HaloBandOnThinOccludersAgainstGtaoAndXegtao) {
+  HaloBand vbao = haloBandAtDefaults("vbao"), gtao = haloBandAtDefaults("gtao"), xegtao = haloBandAtDefaults("xegtao");
+  std::cout << fmt::format("thin-depth2 halo band RMSE / bias: vbao {:.4f} / {:+.4f}, gtao {:.4f} / {:+.4f}, xegtao {:.4f} / {:+.4f}\n",
+                           vbao.rmse, vbao.bias, gtao.rmse, gtao.bias, xegtao.rmse, xegtao.bias);
+  EXPECT_LT(vbao.rmse, gtao.rmse);
+  EXPECT_LT(vbao.rmse, xegtao.rmse);
+  EXPECT_LT(std::abs(vbao.bias), std::abs(gtao.bias));
+  EXPECT_LT(std::abs(xegtao.bias), std::abs(vbao.bias));
+}
+
+TEST(Vbao, EveryDebugViewIsWritten) {
+  const Technique& t = findTechnique("vbao");
+  std::string views;
+  for (const auto& v : t.debugViews) views += " --debug " + v.name;
+  fs::path out = scratchDir("vbao-debug") / "out";
+  auto r = runAoreplay(fmt::format("run {} --technique vbao --frames 0:2{} --out {}", shipped("boxes-orbit").string(), views,
+                                   out.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const auto& v : t.debugViews)
+    for (const char* ext : {".exr", ".png"})
+      EXPECT_TRUE(fs::exists(out / "debug" / v.name / (std::string("0001") + ext))) << v.name << ext;
+  // The share of sectors occupied lies in [0, 1] and is not 0 everywhere on a scene of boxes.
+  auto sectors = readExrChannels(out / "debug" / "sectors" / "0001.exr", {"R"}).at("R");
+  EXPECT_GE(*std::min_element(sectors.begin(), sectors.end()), 0.0f);
+  EXPECT_LE(*std::max_element(sectors.begin(), sectors.end()), 1.0f);
+  EXPECT_GT(*std::max_element(sectors.begin(), sectors.end()), 0.1f);
 }
 
 }  // namespace

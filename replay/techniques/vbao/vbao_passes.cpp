@@ -1,4 +1,5 @@
 // vbao's main pass: xegtao's samples, each a slab marking sectors of its slice (shaders/vbao/).
+#include <algorithm>
 #include <bit>
 
 #include "runtime/pass_context.h"
@@ -7,9 +8,12 @@
 namespace aor {
 namespace {
 
+// sectors=0 ties them to the samples of a slice, as Bevy does.
+int sectorCount(const VbaoSettings& s) { return s.sectors > 0 ? s.sectors : std::min(2 * s.steps, int(shader::kVbaoMaxSectors)); }
+
 std::vector<SpecializationValue> mainPassSpecialization(const VbaoSettings& s) {
   return {specializationValue(shader::kVbaoSpecSlices, s.slices), specializationValue(shader::kVbaoSpecSteps, s.steps),
-          specializationValue(shader::kVbaoSpecSectors, s.sectors),
+          specializationValue(shader::kVbaoSpecSectors, sectorCount(s)),
           specializationValue(shader::kVbaoSpecCosine, s.weighting == VbaoWeighting::Cosine),
           specializationValue(shader::kHorizonSpecDepth32, s.depth32),
           {uint32_t(shader::kVbaoSpecSampleDistributionPower), std::bit_cast<uint32_t>(s.sampleDistributionPower)}};

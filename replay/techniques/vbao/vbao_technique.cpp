@@ -19,7 +19,9 @@ const KeyTable<VbaoSettings>& keyTable() {
       intKey(&V::steps, "steps", 1, 32, "samples per side of a slice"),
       floatKey(&V::thickness, "thickness", 0.0, 1e6,
                "world units: every depth sample is a slab this thick behind what it sees (Bevy: 0.25)", kTunable),
-      intKey(&V::sectors, "sectors", 1, 32, "sectors of a slice's hemisphere in its bit mask (Bevy: 32)"),
+      intKey(&V::sectors, "sectors", 0, 32,
+             "sectors of a slice's hemisphere in its bit mask (the paper's 32); 0: tied to the samples, 2 x steps "
+             "(Bevy's)"),
       enumKey(&V::weighting, "weighting", {"uniform", "cosine"},
               "what an open sector weighs: its share of the hemisphere (uniform, Bevy's) or its cosine-weighted "
               "arc integral as GTAO's (cosine)"),
