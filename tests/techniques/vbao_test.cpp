@@ -179,11 +179,11 @@ HaloBand haloBandAtDefaults(const std::string& technique) {
   return {band["rmse"].get<double>(), band["bias"].get<double>()};
 }
 
-// Issue 50: the measured ordering on thin-depth2 at every technique's defaults (README, "Thin
-// occluders"). vbao has the lowest halo-band RMSE of the three and a smaller |bias| than gtao;
-// xegtao's |bias| is smaller than vbao's, not larger as the paper's claim would have it: gtao and
-// vbao are too bright in this band, and xegtao's final_value_power 2.2, which darkens everything,
-// overshoots it to too dark by less.
+// Issue 50: the measured ordering on thin-depth2 at every technique's defaults. vbao has the
+// lowest halo-band RMSE of the three and a smaller |bias| than gtao; xegtao's |bias| is smaller
+// than vbao's, not larger as the paper's claim would have it (replay/techniques/vbao/README.md,
+// "Thin occluders": every technique here is too bright in this band at power 1, and xegtao's
+// default power 2.2 darkens it).
 TEST(Vbao, HaloBandOnThinOccludersAgainstGtaoAndXegtao) {
   HaloBand vbao = haloBandAtDefaults("vbao"), gtao = haloBandAtDefaults("gtao"), xegtao = haloBandAtDefaults("xegtao");
   std::cout << fmt::format("thin-depth2 halo band RMSE / bias: vbao {:.4f} / {:+.4f}, gtao {:.4f} / {:+.4f}, xegtao {:.4f} / {:+.4f}\n",
