@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,6 +18,7 @@
 #include "report/tune_report.h"
 #include "techniques/registry.h"
 #include "techniques/settings_file.h"
+#include "tune/cross_validation.h"
 #include "tune/tuning.h"
 #include "vk/context.h"
 
@@ -30,6 +32,8 @@ struct TuneArgs {
   TuneRequest request{defaultTechnique().name};
   TuneLimits limits;
   std::string out, device;
+  bool crossValidate = false;
+  double margin = kDefaultCrossValidationMargin;
 };
 
 std::string valuesText(const std::vector<TuneDimension>& dims, const std::vector<double>& values) {
@@ -51,18 +55,29 @@ auto progressPrinter(const std::string& objective, const std::vector<TuneDimensi
   };
 }
 
+// --cv: the folds, each a whole tuning, with a line as each starts.
+std::optional<CrossValidation> crossValidateIfAsked(const TuneArgs& args, VulkanContext& vk, const TuneLimits& limits,
+                                                   const std::vector<TuneCapture>& training) {
+  if (!args.crossValidate) return std::nullopt;
+  auto started = [](size_t i, size_t n) { fmt::print(stderr, "cross-validation: fold {} of {}\n", i + 1, n); };
+  return crossValidate(vk, args.request, limits, training, args.margin, started);
+}
+
 int tuneCommand(const TuneArgs& args) {
   const TuneRequest& request = args.request;
   const Technique& technique = findTechnique(request.technique);
   checkObjective(request.objective);
   std::vector<TuneCapture> training, holdout;
   std::vector<fs::path> inputs;
-  for (const auto& c : args.captures) training.push_back(loadTuneCapture(c, request.frames));
-  for (const auto& c : args.holdout) holdout.push_back(loadTuneCapture(c, request.frames));
+  for (const auto& c : captureFoldersOf(args.captures)) training.push_back(loadTuneCapture(c, request.frames));
+  for (const auto& c : captureFoldersOf(args.holdout)) holdout.push_back(loadTuneCapture(c, request.frames));
+  if (args.crossValidate && training.size() < 2)
+    throw InputError("", std::nullopt, "--cv", "cross-validation leaves one capture out per fold: give at least two captures");
   for (const auto* list : {&training, &holdout})
     for (const auto& t : *list) inputs.push_back(t.capture.folder);
   TuneRun run = planTuning(request, args.limits, training, holdout);
   OutputDirectory out(args.out.empty() ? fs::path("out") / ("tune-" + technique.name) : fs::path(args.out), ResultKind::Tune, inputs);
+  std::optional<CrossValidation> cv;
   {
     ContextScope context({args.device, false, optionalExtensionsOf({tuneStart(request, training.front().capture)})});
     TuneLimits limits = args.limits;
@@ -71,11 +86,16 @@ int tuneCommand(const TuneArgs& args) {
     for (const auto& d : run.dimensions) names.push_back(d.name);
     fmt::print(stderr, "tuning {} of {} on {} capture(s), at most {} evaluations\n", fmt::join(names, ", "), technique.name,
                training.size(), limits.maxEvaluations);
+    cv = crossValidateIfAsked(args, context.vk, limits, training);
+    if (cv) fmt::print(stderr, "cross-validation: the fit on every capture\n");
     tuneSettings(context.vk, request, limits, training, holdout, run);
   }
-  writeJson(out.staging() / "tune.json", tuneJson(run));
+  const bool refused = cv && !cv->accepted();
+  nlohmann::json tuneDocument = tuneJson(run);
+  if (cv) tuneDocument["cross_validation"] = crossValidationJson(*cv);
+  writeJson(out.staging() / "tune.json", tuneDocument);
   writeJson(out.staging() / "tune_times.json", tuneTimesJson(run));
-  writeJson(out.staging() / "tuned.settings.json", run.settingsFile);
+  writeJson(out.staging() / "tuned.settings.json", refused ? run.startSettingsFile : run.settingsFile);
   writeText(out.staging() / "tune_objective.svg", tuneObjectiveSvg(run));
   writeText(out.staging() / "tune_error_ms.svg", tuneErrorMsSvg(run));
   out.commit();
@@ -84,9 +104,10 @@ int tuneCommand(const TuneArgs& args) {
   fmt::print("tuned {} on {} ({} evaluations, device {}): {}\n", technique.name, fmt::join(run.training, ", "),
              run.search.evaluations.size(), run.device, valuesText(run.dimensions, best.values));
   fmt::print("{}", tuneSummary(run));
+  if (cv) fmt::print("{}", crossValidationSummary(*cv, request.objective));
   fmt::print("outputs: {}/ (tune.json, tune_times.json, tuned.settings.json, tune_objective.svg, tune_error_ms.svg)\n",
              out.finalPath().string());
-  return kExitOk;
+  return refused ? kExitFailed : kExitOk;
 }
 
 }  // namespace
@@ -94,7 +115,9 @@ int tuneCommand(const TuneArgs& args) {
 void registerTuneCommand(CLI::App& app) {
   auto args = std::make_shared<TuneArgs>();
   auto* cmd = app.add_subcommand("tune", "fit a technique's constants to the captures' ray-traced references");
-  cmd->add_option("captures", args->captures, "training capture folders (each needs ray-traced references)")->required();
+  cmd->add_option("captures", args->captures,
+                  "training capture folders (each needs ray-traced references); a folder without capture.json is a "
+                  "library: its capture subfolders")->required();
   cmd->add_option("--technique", args->request.technique, "technique whose keys are tuned")->capture_default_str();
   cmd->add_option("--keys", args->request.keys,
                   "comma-separated keys to search (default: those the technique marks tunable; `aoreplay techniques` "
@@ -107,6 +130,13 @@ void registerTuneCommand(CLI::App& app) {
                   "measured, so with a budget the result can differ run to run)")
       ->check(numberIn(1e-6, 1e9));
   cmd->add_option("--holdout", args->holdout, "capture folders scored before and after, never searched on");
+  cmd->add_flag("--cv", args->crossValidate,
+                "leave-one-capture-out cross-validation: each capture is scored by a fit on the others; the fit on all is "
+                "recommended only when no fold got worse than the defaults by more than --cv-margin, else "
+                "tuned.settings.json holds the defaults and tune exits 1");
+  cmd->add_option("--cv-margin", args->margin,
+                  "how much worse than the defaults a fold's held-out objective may get, as a fraction (0.02: +2 %)")
+      ->check(numberIn(0.0, 10.0))->capture_default_str();
   cmd->add_option("--preset", args->request.preset, "the technique's preset to start from (default: its default)");
   cmd->add_option("--set", args->request.assignments, "KEY=VALUE held fixed, repeatable");
   cmd->add_option("--range", args->request.ranges, "KEY=MIN:MAX narrows a tuned key's declared range, repeatable");

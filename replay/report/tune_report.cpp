@@ -128,4 +128,33 @@ std::string tuneSummary(const TuneRun& run) {
   return out;
 }
 
+json crossValidationJson(const CrossValidation& cv) {
+  json folds = json::array();
+  for (const auto& f : cv.folds)
+    folds.push_back({{"held_out", f.heldOut}, {"training", f.run.training}, {"before", f.before()}, {"after", f.after()},
+                     {"change", f.change()}, {"training_before", f.run.trainingBefore.objective},
+                     {"training_after", f.run.trainingAfter.objective}, {"tuned", f.run.settingsFile}});
+  json j{{"margin", cv.margin}, {"folds", folds}, {"accepted", cv.accepted()},
+         {"recommended", cv.accepted() ? "tuned" : "defaults"}};
+  if (!cv.accepted()) j["refused_by"] = cv.folds[size_t(cv.refusedFold)].heldOut;
+  return j;
+}
+
+std::string crossValidationSummary(const CrossValidation& cv, const std::string& objective) {
+  std::string out;
+  for (size_t i = 0; i < cv.folds.size(); ++i) {
+    const auto& f = cv.folds[i];
+    out += fmt::format("  fold {} (held out {}): {} {:.5f} -> {:.5f} ({:+.1f} %)\n", i + 1, f.heldOut, objective, f.before(),
+                       f.after(), 100.0 * f.change());
+  }
+  if (cv.accepted())
+    return out + fmt::format("cross-validation: every fold's held-out {} within +{:.1f} % of the defaults': the fit on "
+                             "every capture is recommended (tuned.settings.json)\n",
+                             objective, 100.0 * cv.margin);
+  const auto& worst = cv.folds[size_t(cv.refusedFold)];
+  return out + fmt::format("cross-validation: refused: fold {} (held out {}) got worse by {:+.1f} %, more than the margin "
+                           "+{:.1f} %: the defaults are recommended (tuned.settings.json holds them; exit 1)\n",
+                           cv.refusedFold + 1, worst.heldOut, 100.0 * worst.change(), 100.0 * cv.margin);
+}
+
 }  // namespace aor

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tune/cross_validation.h"
 #include "tune/tuning.h"
 
 namespace aor {
@@ -17,5 +18,10 @@ std::string tuneObjectiveSvg(const TuneRun& run);  // objective per evaluation a
 std::string tuneErrorMsSvg(const TuneRun& run);    // every evaluation; before and after per capture
 // The terminal's summary: objective before and after, training and hold-out, per capture.
 std::string tuneSummary(const TuneRun& run);
+// tune.json's "cross_validation": the margin, every fold's held-out objective before and after, the
+// verdict and what tuned.settings.json holds ("tuned" or "defaults").
+nlohmann::json crossValidationJson(const CrossValidation& cv);
+// One line a fold, and the verdict.
+std::string crossValidationSummary(const CrossValidation& cv, const std::string& objective);
 
 }  // namespace aor

@@ -1,6 +1,7 @@
 #include "tune/tuning.h"
 
 #include <algorithm>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -126,6 +127,26 @@ TuneCapture loadTuneCapture(const std::string& folder, const std::string& frames
   return t;
 }
 
+std::vector<std::string> captureFoldersOf(const std::vector<std::string>& arguments) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> folders;
+  for (const auto& argument : arguments) {
+    std::error_code ec;
+    if (fs::exists(fs::path(argument) / "capture.json", ec) || !fs::is_directory(argument, ec)) {
+      folders.push_back(argument);  // a capture, or what loadCapture will name as missing
+      continue;
+    }
+    std::vector<std::string> library;
+    for (const auto& entry : fs::directory_iterator(argument, ec))
+      if (fs::exists(entry.path() / "capture.json", ec)) library.push_back(entry.path().string());
+    if (library.empty())
+      throw InputError(argument, std::nullopt, "", "holds neither capture.json nor capture folders (a library's are its subfolders)");
+    std::sort(library.begin(), library.end());
+    folders.insert(folders.end(), library.begin(), library.end());
+  }
+  return folders;
+}
+
 void checkObjective(const std::string& objective) {
   if (objective != "rmse" && objective != "mse" && objective != "ssim" && objective != "flip")
     throw InputError("", std::nullopt, "--objective", fmt::format("'{}' is not rmse, mse, ssim or flip", objective));
@@ -211,6 +232,7 @@ void tuneSettings(VulkanContext& vk, const TuneRequest& request, const TuneLimit
     run.holdoutAfter = scoreConfiguration(vk, holdout, best, request);
   }
   run.settingsFile = settingsFileJson(best);
+  run.startSettingsFile = settingsFileJson(tuneCandidate(request, run.dimensions, run.search.evaluations.front().values));
 }
 
 }  // namespace aor

@@ -141,5 +141,69 @@ TEST(Tune, UnknownAndUntunableKeysExit2) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+
+// Captures with references, made here: two scenes far apart (a box city, a lone sphere).
+fs::path libraryCapture(const fs::path& dir, const std::string& scene, const std::string& path) {
+  fs::path out = dir / (scene + "-" + path);
+  auto r = runAoreplay(fmt::format("capture {} --path {} --size 96x54 --frames 2 --reference-spp 32 --out {}", scene, path,
+                                   out.string()));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  return out;
+}
+
+// Issue 54: a fit that improves its training capture but worsens the one held out is refused, the
+// fold named, and the defaults are what tuned.settings.json recommends.
+TEST(TuneCrossValidation, AFitThatWorsensAHeldOutFoldIsRefusedWithTheFoldNamed) {
+  fs::path dir = scratchDir("tune-cv-refused");
+  fs::path boxes = libraryCapture(dir, "boxes", "orbit"), sphere = libraryCapture(dir, "sphere", "orbit");
+  fs::path out = dir / "out";
+  auto r = runAoreplay(fmt::format("tune {} {} --technique xegtao --cv --max-evaluations 12 --out {}", boxes.string(),
+                                   sphere.string(), out.string()));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("cross-validation: refused: fold 1 (held out boxes-orbit)"), std::string::npos) << r.output;
+  auto tune = json::parse(readText(out / "tune.json"));
+  const auto& cv = tune["cross_validation"];
+  EXPECT_FALSE(cv["accepted"].get<bool>());
+  EXPECT_EQ(cv["recommended"], "defaults");
+  EXPECT_EQ(cv["refused_by"], "boxes-orbit");
+  const auto& fold = cv["folds"][0];
+  EXPECT_LT(fold["training_after"].get<double>(), fold["training_before"].get<double>()) << "the fit improved its training";
+  EXPECT_GT(fold["after"].get<double>(), fold["before"].get<double>() * (1.0 + cv["margin"].get<double>()));
+  // The recommended file is the untuned start: xegtao's defaults.
+  auto recommended = json::parse(readText(out / "tuned.settings.json"));
+  EXPECT_NE(recommended, tune["settings"]) << "the refused fit is not what is recommended";
+  auto run = runAoreplay(fmt::format("run {} --frames 0:1 --no-images --settings {} --out {}", boxes.string(),
+                                     (out / "tuned.settings.json").string(), (dir / "run").string()));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  auto defaults = runAoreplay(fmt::format("run {} --technique xegtao --frames 0:1 --no-images --out {}", boxes.string(),
+                                          (dir / "defaults").string()));
+  ASSERT_EQ(defaults.exitCode, 0) << defaults.output;
+  auto rmse = [](const fs::path& folder) {
+    return json::parse(readText(folder / "report.json"))["metrics"]["error"]["rmse"].get<double>();
+  };
+  EXPECT_EQ(rmse(dir / "run"), rmse(dir / "defaults"));
+}
+
+// With a margin that no fold exceeds the fit on every capture is recommended, exit 0; a library
+// folder stands for its captures; one capture is not enough to cross-validate.
+TEST(TuneCrossValidation, AFitWithinTheMarginIsRecommendedAndALibraryFolderIsItsCaptures) {
+  fs::path dir = scratchDir("tune-cv-accepted");
+  fs::path library = dir / "library";
+  libraryCapture(library, "boxes", "orbit");
+  libraryCapture(library, "boxes", "strafe");
+  fs::path out = dir / "out";
+  auto r = runAoreplay(fmt::format("tune {} --keys power --cv --cv-margin 10 --max-evaluations 5 --out {}", library.string(),
+                                   out.string()));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  auto tune = json::parse(readText(out / "tune.json"));
+  EXPECT_EQ(tune["training"], json::array({"boxes-orbit", "boxes-strafe"}));
+  EXPECT_TRUE(tune["cross_validation"]["accepted"].get<bool>());
+  EXPECT_EQ(tune["cross_validation"]["folds"].size(), 2u);
+  EXPECT_EQ(json::parse(readText(out / "tuned.settings.json")), tune["settings"]);
+  auto one = runAoreplay(fmt::format("tune {} --cv --out {}", (library / "boxes-orbit").string(), (dir / "one").string()));
+  EXPECT_EQ(one.exitCode, 2) << one.output;
+  EXPECT_NE(one.output.find("--cv"), std::string::npos) << one.output;
+}
+
 }  // namespace
 }  // namespace aor::test

@@ -1,6 +1,8 @@
 // The search behind `aoreplay tune`, on objectives with known minima (no GPU).
 #include "tune/tuner.h"
 
+#include "tune/cross_validation.h"
+
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -110,6 +112,30 @@ TEST(Tuner, AnObjectivesErrorReachesTheCaller) {
     return bowl(v);
   };
   EXPECT_THROW(tune(p), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace aor
+
+namespace aor {
+namespace {
+
+CrossValidationFold foldOf(const std::string& name, double before, double after) {
+  CrossValidationFold f{name, {}};
+  f.run.holdoutBefore.objective = before;
+  f.run.holdoutAfter.objective = after;
+  return f;
+}
+
+// The verdict of `tune --cv`: the fold that got worse by the most beyond the margin, else none.
+TEST(CrossValidationVerdict, TheWorstFoldBeyondTheMarginIsRefusedAndNoneWithin) {
+  std::vector<CrossValidationFold> folds{foldOf("a", 0.10, 0.09), foldOf("b", 0.10, 0.1019), foldOf("c", 0.20, 0.21),
+                                         foldOf("d", 0.10, 0.108)};
+  EXPECT_EQ(refusedFold(folds, 0.02), 3) << "d rose 8 %, c 5 %, b 1.9 % (within)";
+  EXPECT_EQ(refusedFold(folds, 0.06), 3);
+  EXPECT_EQ(refusedFold(folds, 0.09), -1) << "every rise within 9 %";
+  EXPECT_EQ(refusedFold({foldOf("a", 0.1, 0.05)}, 0.0), -1);
+  EXPECT_EQ(refusedFold({foldOf("a", 0.1, 0.1000001)}, 0.0), 0);
 }
 
 }  // namespace
