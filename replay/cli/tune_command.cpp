@@ -42,11 +42,12 @@ std::string valuesText(const std::vector<TuneDimension>& dims, const std::vector
   return out;
 }
 
-// "[12/40] rmse 0.08123, best 0.07901 (radius_scale=1.41 power=2.05), about 35 s left"
-auto progressPrinter(const std::string& objective, const std::vector<TuneDimension>& dims) {
-  auto started = std::chrono::steady_clock::now();
+// "[12/40] rmse 0.08123, best 0.07901 (radius_scale=1.41 power=2.05), about 35 s left"; the time
+// left is of the search under way: `started` is reset as each (cross-validation fold's) search begins.
+auto progressPrinter(const std::string& objective, const std::vector<TuneDimension>& dims,
+                     std::shared_ptr<std::chrono::steady_clock::time_point> started) {
   return [=](const std::vector<TuneEvaluation>& done, int best, int max) {
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - *started).count();
     double left = elapsed / double(done.size()) * double(max - int(done.size()));
     std::string bestText = best < 0 ? "none within the budget yet"
                                     : fmt::format("{:.5f} ({})", done[size_t(best)].measure.objective, valuesText(dims, done[size_t(best)].values));
@@ -57,10 +58,17 @@ auto progressPrinter(const std::string& objective, const std::vector<TuneDimensi
 
 // --cv: the folds, each a whole tuning, with a line as each starts.
 std::optional<CrossValidation> crossValidateIfAsked(const TuneArgs& args, VulkanContext& vk, const TuneLimits& limits,
-                                                   const std::vector<TuneCapture>& training) {
+                                                   const std::vector<TuneCapture>& training,
+                                                   const std::shared_ptr<std::chrono::steady_clock::time_point>& searchStart) {
   if (!args.crossValidate) return std::nullopt;
-  auto started = [](size_t i, size_t n) { fmt::print(stderr, "cross-validation: fold {} of {}\n", i + 1, n); };
-  return crossValidate(vk, args.request, limits, training, args.margin, started);
+  auto started = [searchStart](size_t i, size_t n) {
+    fmt::print(stderr, "cross-validation: fold {} of {}\n", i + 1, n);
+    *searchStart = std::chrono::steady_clock::now();
+  };
+  auto cv = crossValidate(vk, args.request, limits, training, args.margin, started);
+  fmt::print(stderr, "cross-validation: the fit on every capture\n");
+  *searchStart = std::chrono::steady_clock::now();
+  return cv;
 }
 
 int tuneCommand(const TuneArgs& args) {
@@ -81,13 +89,13 @@ int tuneCommand(const TuneArgs& args) {
   {
     ContextScope context({args.device, false, optionalExtensionsOf({tuneStart(request, training.front().capture)})});
     TuneLimits limits = args.limits;
-    limits.progress = progressPrinter(request.objective, run.dimensions);
+    auto searchStart = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+    limits.progress = progressPrinter(request.objective, run.dimensions, searchStart);
     std::vector<std::string> names;
     for (const auto& d : run.dimensions) names.push_back(d.name);
     fmt::print(stderr, "tuning {} of {} on {} capture(s), at most {} evaluations\n", fmt::join(names, ", "), technique.name,
                training.size(), limits.maxEvaluations);
-    cv = crossValidateIfAsked(args, context.vk, limits, training);
-    if (cv) fmt::print(stderr, "cross-validation: the fit on every capture\n");
+    cv = crossValidateIfAsked(args, context.vk, limits, training, searchStart);
     tuneSettings(context.vk, request, limits, training, holdout, run);
   }
   const bool refused = cv && !cv->accepted();
