@@ -19,12 +19,18 @@ def load(out, technique):
     folds = cv["folds"]
     recommended = cv["recommended"]
     before = sum(f["before"] for f in folds) / len(folds)
-    after = sum(f["after"] for f in folds) / len(folds) if recommended == "tuned" else before
+    after = sum(f["after"] for f in folds) / len(folds)  # the fit's cross-validated estimate, refused or not
     training = times["results"]["training"]
-    ms_after = training["after"]["ms"] if recommended == "tuned" else training["before"]["ms"]
     return {"technique": technique, "folds": folds, "recommended": recommended, "refused_by": cv.get("refused_by"),
             "margin": cv["margin"], "before": before, "after": after, "ms_before": training["before"]["ms"],
-            "ms_after": ms_after, "keys": [k["key"] for k in tune["keys"]], "settings": tune["settings"]}
+            "ms_after": training["after"]["ms"], "keys": [k["key"] for k in tune["keys"]],
+            "worst": max(folds, key=change), "settings": tune["settings"]}
+
+
+def change(f):
+    if f["before"] > 0:
+        return f["after"] / f["before"] - 1
+    return float("inf") if f["after"] > 0 else 0.0
 
 
 def pareto(points):
@@ -33,7 +39,8 @@ def pareto(points):
 
 def svg(rows, path):
     points = [(r["ms_before"], r["before"], r["technique"] + " defaults") for r in rows] + \
-             [(r["ms_after"], r["after"], r["technique"] + " tuned") for r in rows if r["recommended"] == "tuned"]
+             [(r["ms_after"], r["after"], r["technique"] + (" tuned" if r["recommended"] == "tuned" else " fit (refused)"))
+              for r in rows]
     xs, ys = [p[0] for p in points], [p[1] for p in points]
     x0, x1, y0, y1 = 0, max(xs) * 1.1, min(ys) * 0.9, max(ys) * 1.05
     w, h, m = 720, 440, 60
@@ -53,27 +60,28 @@ def svg(rows, path):
     out.append('<polyline fill="none" stroke="#c33" stroke-dasharray="4 3" points="' +
                " ".join(f"{X(x):.1f},{Y(y):.1f}" for x, y in front) + '"/>')
     for x, y, label in points:
-        filled = "tuned" in label
-        out.append(f'<circle cx="{X(x):.1f}" cy="{Y(y):.1f}" r="4" fill="{"#36c" if filled else "white"}" stroke="#36c"/>')
+        colour = "#36c" if "defaults" in label else "#c60"
+        filled = "refused" not in label
+        out.append(f'<circle cx="{X(x):.1f}" cy="{Y(y):.1f}" r="4" fill="{colour if filled else "white"}" stroke="{colour}"/>')
         out.append(f'<text x="{X(x)+6:.1f}" y="{Y(y)-5:.1f}">{label}</text>')
-    out.append(f'<text x="{w-m}" y="{m-8}" text-anchor="end" fill="#c33">dashed: Pareto front</text></svg>')
+    out.append(f'<text x="{w-m}" y="{m-8}" text-anchor="end" fill="#c33">dashed: Pareto front; blue: defaults, orange: the cross-validated fit (hollow: refused)</text></svg>')
     path.write_text("\n".join(out) + "\n")
 
 
 def main():
     out = pathlib.Path(sys.argv[1])
     rows = [load(out, t) for t in sys.argv[2:] if (out / t / "tune.json").exists()]
-    lines = ["| technique | tuned keys | held-out RMSE defaults | tuned (cross-validated) | recommended | worst fold | ms defaults | ms tuned |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = ["| technique | tuned keys | held-out RMSE, defaults | the fit, cross-validated | recommended | worst fold | margin it would pass | ms defaults | ms fit |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        worst = max(r["folds"], key=lambda f: f["after"] / f["before"])
-        lines.append(f'| {r["technique"]} | {", ".join(r["keys"])} | {r["before"]:.4f} | {r["after"]:.4f} | {r["recommended"]}'
-                     f'{" (" + r["refused_by"] + ")" if r["refused_by"] else ""} | {worst["held_out"]} {100*(worst["after"]/worst["before"]-1):+.1f} % |'
+        w = r["worst"]
+        lines.append(f'| {r["technique"]} | {", ".join(r["keys"])} | {r["before"]:.4f} | {r["after"]:.4f} ({100*(r["after"]/r["before"]-1):+.1f} %) |'
+                     f' {r["recommended"]} | {w["held_out"]} {100*change(w):+.1f} % | {100*max(change(w), 0):.1f} % |'
                      f' {r["ms_before"]:.3f} | {r["ms_after"]:.3f} |')
     lines += ["", "Per fold (held-out RMSE before -> after the fit on the other captures):", ""]
     for r in rows:
         lines.append(f'- {r["technique"]}: ' + "; ".join(
-            f'{f["held_out"]} {f["before"]:.4f} -> {f["after"]:.4f} ({100*(f["after"]/f["before"]-1):+.1f} %)' for f in r["folds"]))
+            f'{f["held_out"]} {f["before"]:.4f} -> {f["after"]:.4f} ({100*change(f):+.1f} %)' for f in r["folds"]))
     (out / "tuned-against-tuned.md").write_text("\n".join(lines) + "\n")
     if rows:
         svg(rows, out / "tuned-against-tuned.svg")

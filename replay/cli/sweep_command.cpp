@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "capture/library.h"
 #include "cli/commands.h"
 #include "cost/launcher.h"
 #include "cli/cost_option.h"
@@ -66,9 +67,9 @@ std::vector<std::string> splitPresets(const std::string& text) {
   return presets;
 }
 
-int sweepCommand(const SweepArgs& args) {
-  if (args.cost != CostMeasure::Time && !CallgrindCounter::underCallgrind()) return runUnderCallgrind(args.cost);
-  Capture capture = loadCapture(args.capture);
+// One capture's sweep into `outFolder` (empty: out/<capture name>-sweep/).
+int sweepCapture(const SweepArgs& args, const std::string& capturePath, const std::string& outFolder) {
+  Capture capture = loadCapture(capturePath);
   SettingsOptions range;
   range.frames = args.frames;
   auto [begin, end] = range.frameRange(capture);
@@ -98,7 +99,7 @@ int sweepCommand(const SweepArgs& args) {
     options.repeat = args.repeatGiven ? args.repeat : 1;
     prepareCountedReplay(args.cost, {options.repeat, false, false}, options);
   }
-  OutputDirectory out(args.out.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(args.out),
+  OutputDirectory out(outFolder.empty() ? fs::path("out") / (capture.name + "-sweep") : fs::path(outFolder),
                       ResultKind::Sweep, {capture.folder});
 
   SweepInfo info{capture.name, "", "", costMeasureName(args.cost), options.frameBegin, options.frameEnd, options.repeat,
@@ -137,12 +138,30 @@ int sweepCommand(const SweepArgs& args) {
   return kExitOk;
 }
 
+// A library (a folder of captures, capture/library.h) is swept capture by capture, each into
+// OUT/<capture name>/ (OUT default out/<library name>-sweep/).
+int sweepCommand(const SweepArgs& args) {
+  if (args.cost != CostMeasure::Time && !CallgrindCounter::underCallgrind()) return runUnderCallgrind(args.cost);
+  if (!isCaptureLibrary(args.capture)) return sweepCapture(args, args.capture, args.out);
+  const auto folders = captureFoldersOf({args.capture});
+  const fs::path base = args.out.empty() ? fs::path("out") / (fs::path(args.capture).filename().string() + "-sweep") : fs::path(args.out);
+  for (size_t i = 0; i < folders.size(); ++i) {
+    const std::string name = fs::path(folders[i]).filename().string();
+    fmt::print(stderr, "library: capture {} of {}: {}\n", i + 1, folders.size(), name);
+    sweepCapture(args, folders[i], (base / name).string());
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 void registerSweepCommand(CLI::App& app, const Technique& help) {
   auto args = std::make_shared<SweepArgs>();
   auto* cmd = app.add_subcommand("sweep", "replay a capture under several settings: error against GPU time, Pareto front");
-  cmd->add_option("capture", args->capture, "capture folder (holding capture.json)")->required();
+  cmd->add_option("capture", args->capture,
+                  "capture folder (holding capture.json), or a library: a folder of capture folders, each swept into "
+                  "OUT/<capture name>/")
+      ->required();
   cmd->add_option("--presets", args->presets,
                   fmt::format("comma-separated presets to run (default: every preset of each technique; {}: {})", help.name,
                               help.presetList()));
@@ -163,7 +182,7 @@ void registerSweepCommand(CLI::App& app, const Technique& help) {
                      ->check(wholeIn(1, 100000))
                      ->capture_default_str();
   cmd->add_option("--warmup", args->warmup, "untimed executions of each frame first")->check(wholeIn(0, 100000))->capture_default_str();
-  cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/)");
+  cmd->add_option("--out", args->out, "output folder (default out/<capture name>-sweep/, a library's out/<library name>-sweep/)");
   cmd->add_option("--device", args->device, kDeviceHelp);
   cmd->add_option("--rank-by", args->rank,
                   "the error the plot and the Pareto front use: rmse (every surface pixel) or halo_band (the "

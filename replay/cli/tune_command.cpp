@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/handlers.h"
+#include "capture/library.h"
 #include "cli/number_options.h"
 #include "core/output_directory.h"
 #include "report/run_outputs.h"

@@ -3,6 +3,7 @@
 // capture but one and scores the one left out before and after; the fit on all captures is
 // recommended only when no fold's held-out objective got worse than the defaults' by more than a
 // margin, else the defaults are (the worst such fold named).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,12 @@ struct CrossValidationFold {
   TuneRun run;  // trained on the other captures; its hold-out is the one left out
   double before() const { return run.holdoutBefore.objective; }
   double after() const { return run.holdoutAfter.objective; }
-  double change() const { return after() / before() - 1.0; }  // relative; the objectives are lower-is-better
+  // Relative change; the objectives are lower-is-better. 0 when both are 0 (a flat plane's exact
+  // answer), infinite when only the fit's is above 0.
+  double change() const {
+    if (before() > 0.0) return after() / before() - 1.0;
+    return after() > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+  }
 };
 
 struct CrossValidation {

@@ -1,7 +1,6 @@
 #include "tune/tuning.h"
 
 #include <algorithm>
-#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -125,26 +124,6 @@ TuneCapture loadTuneCapture(const std::string& folder, const std::string& frames
                      fmt::format("no frame in {}:{} has a ray-traced reference, and tune fits to one (aoreplay capture "
                                  "writes them)", t.begin, t.end));
   return t;
-}
-
-std::vector<std::string> captureFoldersOf(const std::vector<std::string>& arguments) {
-  namespace fs = std::filesystem;
-  std::vector<std::string> folders;
-  for (const auto& argument : arguments) {
-    std::error_code ec;
-    if (fs::exists(fs::path(argument) / "capture.json", ec) || !fs::is_directory(argument, ec)) {
-      folders.push_back(argument);  // a capture, or what loadCapture will name as missing
-      continue;
-    }
-    std::vector<std::string> library;
-    for (const auto& entry : fs::directory_iterator(argument, ec))
-      if (fs::exists(entry.path() / "capture.json", ec)) library.push_back(entry.path().string());
-    if (library.empty())
-      throw InputError(argument, std::nullopt, "", "holds neither capture.json nor capture folders (a library's are its subfolders)");
-    std::sort(library.begin(), library.end());
-    folders.insert(folders.end(), library.begin(), library.end());
-  }
-  return folders;
 }
 
 void checkObjective(const std::string& objective) {

@@ -61,9 +61,6 @@ struct TuneCapture {
 };
 // Throws InputError when no frame in the range has a ray-traced reference.
 TuneCapture loadTuneCapture(const std::string& folder, const std::string& frames);
-// The capture folders the arguments name: a folder holding capture.json is one; a folder without
-// one is a library, every subfolder holding capture.json in name order (none: InputError).
-std::vector<std::string> captureFoldersOf(const std::vector<std::string>& arguments);
 
 // Refuses an objective other than rmse, mse, ssim and flip (InputError, --objective).
 void checkObjective(const std::string& objective);

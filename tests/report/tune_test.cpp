@@ -185,7 +185,8 @@ TEST(TuneCrossValidation, AFitThatWorsensAHeldOutFoldIsRefusedWithTheFoldNamed) 
 }
 
 // With a margin that no fold exceeds the fit on every capture is recommended, exit 0; a library
-// folder stands for its captures; one capture is not enough to cross-validate.
+// folder stands for its captures (for sweep too); one capture is not enough to cross-validate; a
+// folder holding no capture is exit 2.
 TEST(TuneCrossValidation, AFitWithinTheMarginIsRecommendedAndALibraryFolderIsItsCaptures) {
   fs::path dir = scratchDir("tune-cv-accepted");
   fs::path library = dir / "library";
@@ -203,6 +204,13 @@ TEST(TuneCrossValidation, AFitWithinTheMarginIsRecommendedAndALibraryFolderIsIts
   auto one = runAoreplay(fmt::format("tune {} --cv --out {}", (library / "boxes-orbit").string(), (dir / "one").string()));
   EXPECT_EQ(one.exitCode, 2) << one.output;
   EXPECT_NE(one.output.find("--cv"), std::string::npos) << one.output;
+  // sweep takes the library too: each capture swept into OUT/<capture>/.
+  auto sweep = runAoreplay(fmt::format("sweep {} --presets low --repeat 1 --out {}", library.string(), (dir / "sweep").string()));
+  EXPECT_EQ(sweep.exitCode, 0) << sweep.output;
+  for (const char* capture : {"boxes-orbit", "boxes-strafe"})
+    EXPECT_EQ(json::parse(readText(dir / "sweep" / capture / "sweep.json"))["capture"], capture);
+  auto empty = runAoreplay(fmt::format("tune {} --out {}", dir.string() + "/out", (dir / "none").string()));
+  EXPECT_EQ(empty.exitCode, 2) << empty.output;
 }
 
 }  // namespace

@@ -136,6 +136,9 @@ TEST(CrossValidationVerdict, TheWorstFoldBeyondTheMarginIsRefusedAndNoneWithin) 
   EXPECT_EQ(refusedFold(folds, 0.09), -1) << "every rise within 9 %";
   EXPECT_EQ(refusedFold({foldOf("a", 0.1, 0.05)}, 0.0), -1);
   EXPECT_EQ(refusedFold({foldOf("a", 0.1, 0.1000001)}, 0.0), 0);
+  EXPECT_EQ(refusedFold({foldOf("flat", 0.0, 0.0), foldOf("b", 0.1, 0.1)}, 0.02), -1) << "0 -> 0 is no change";
+  EXPECT_EQ(foldOf("flat", 0.0, 0.0).change(), 0.0);
+  EXPECT_EQ(refusedFold({foldOf("b", 0.1, 0.15), foldOf("flat", 0.0, 0.001)}, 0.02), 1) << "0 -> above 0 is the worst";
 }
 
 }  // namespace
