@@ -163,4 +163,17 @@ void addHorizonDepthViews(FrameBuilder& frame, graph::ResourceId depthMips) {
   for (uint32_t k = 1; k < levels; ++k) frame.debugView(fmt::format("depth_mip{}", k), depthMips, {k, 1, 0, 1});
 }
 
+std::vector<DebugView> horizonDebugViews() {
+  return {
+      {"linear_depth", "the depth chain's MIP 0: XeGTAO's view z (R16F, R32F with depth32=1; sky at its far value)"},
+      {"depth_mip1", "depth MIP 1 (weighted-average filter)"},
+      {"depth_mip2", "depth MIP 2"},
+      {"depth_mip3", "depth MIP 3"},
+      {"depth_mip4", "depth MIP 4"},
+      {"view_normals", "the normals the main pass reads (the shared front's, this tool's view space)"},
+      {"screen_radius", "the main pass's screen-space radius, pixels (R32F)"},
+      {"edges", "packed edges for the denoiser (R8_UNORM: 2 bits a side, left in the top bits)"},
+  };
+}
+
 }  // namespace aor::shared_passes

@@ -51,5 +51,8 @@ graph::ResourceId addHorizonScreenRadius(FrameBuilder& frame, const HorizonBlock
                                          const std::string& passName);
 // The chain's levels as debug views: `linear_depth` (MIP 0) and depth_mipK.
 void addHorizonDepthViews(FrameBuilder& frame, graph::ResourceId depthMips);
+// The declarations of the views the blocks provide (linear_depth, depth_mip1..4, view_normals,
+// screen_radius, edges), for a technique's list before its own.
+std::vector<DebugView> horizonDebugViews();
 
 }  // namespace aor::shared_passes

@@ -71,19 +71,12 @@ Technique makeVbao() {
                {"high", {{"slices", 3}, {"steps", 3}}},
                {"ultra", {{"slices", 9}, {"steps", 3}}}};
   t.defaultPreset = "high";
-  t.debugViews = {
-      {"linear_depth", "the shared depth chain's MIP 0: view z (R16F, R32F with depth32=1; sky at its far value)"},
-      {"depth_mip1", "depth MIP 1"},
-      {"depth_mip2", "depth MIP 2"},
-      {"depth_mip3", "depth MIP 3"},
-      {"depth_mip4", "depth MIP 4"},
-      {"view_normals", "the normals the main pass reads"},
-      {"screen_radius", "the main pass's screen-space radius, pixels (R32F)"},
-      {"edges", "packed edges for the denoiser (R8_UNORM)"},
+  t.debugViews = shared_passes::horizonDebugViews();
+  t.debugViews.insert(t.debugViews.end(), {
       {"ao_raw", "raw visibility as the main pass stores it: round(255 x visibility / 1.5)"},
       {"sectors", "the share of a slice's sectors occupied, averaged over the slices (R32F)"},
       {"ao_denoised", "after the last denoise pass and the sky pass, before any temporal pass"},
-  };
+  });
   t.addPasses = addVbaoPipeline;
   t.history = shared_passes::temporalDenoiseHistory;
   t.withoutHistory = shared_passes::withoutTemporalDenoise;

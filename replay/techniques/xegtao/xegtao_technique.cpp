@@ -67,19 +67,12 @@ Technique makeXeGtao() {
                {"high", {{"slices", 3}, {"steps", 3}}},
                {"ultra", {{"slices", 9}, {"steps", 3}}}};
   t.defaultPreset = "high";
-  t.debugViews = {
-      {"linear_depth", "the prefilter's MIP 0: XeGTAO's view z (R16F, R32F with depth32=1; sky at its far value)"},
-      {"depth_mip1", "depth MIP 1 (weighted-average filter)"},
-      {"depth_mip2", "depth MIP 2"},
-      {"depth_mip3", "depth MIP 3"},
-      {"depth_mip4", "depth MIP 4"},
-      {"view_normals", "the normals the main pass reads (the shared front's, this tool's view space)"},
-      {"screen_radius", "the main pass's screen-space radius, pixels (R32F)"},
-      {"edges", "packed edges for the denoiser (R8_UNORM: 2 bits a side, left in the top bits)"},
+  t.debugViews = shared_passes::horizonDebugViews();
+  t.debugViews.insert(t.debugViews.end(), {
       {"ao_raw", "the main pass's working term as stored: round(255 x visibility / 1.5) (bent=1: RGBA8 packed in R32)"},
       {"ao_denoised", "after the last denoise pass and the sky pass, before any temporal pass: visibility (bent=1: RGBA, bent.xyz + visibility)"},
       {"mip_taps", "report.json frames[i].debug.mip_taps: the main pass's depth taps per MIP level 0-4"},
-  };
+  });
   t.addPasses = addXeGtaoPipeline;
   t.history = shared_passes::temporalDenoiseHistory;
   t.withoutHistory = shared_passes::withoutTemporalDenoise;
