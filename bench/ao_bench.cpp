@@ -31,7 +31,7 @@
 // --floor-json=PATH writes the same as JSON. --no-rates: counts only (floor times 0), e.g. on lavapipe
 // with --benchmark_filter=none to skip the timing, as counts do not depend on the device.
 //
-// --cost=instructions|cycles (README, "Counted cost"): counts instead of times. ao_bench re-executes
+// --cost=instructions|cycles (docs/guide.md, "Counted cost"): counts instead of times. ao_bench re-executes
 // itself under callgrind as `aoreplay run --cost` does; each configuration replays frames 0:2 once
 // (a warm-up first), and each pass of the second frame and `pipeline` (the compute passes' sum) is
 // one repetition whose real_time holds the count (not ms), with a counter named after the measure;

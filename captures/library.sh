@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Generates a training library for `aoreplay tune` (README, "Tuning"): one capture with ray-traced
+# Generates a training library for `aoreplay tune` (docs/tuning.md): one capture with ray-traced
 # references per scene kind and camera path of the generator, and the boxes and thin occluders at
 # other AO radii, so that a fit has distinct scenes to generalise over (`tune LIBRARY --cv`).
 # Usage: bash captures/library.sh OUT [WxH] [FRAMES] [REFERENCE_SPP] [BUILD]

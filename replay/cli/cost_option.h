@@ -1,5 +1,5 @@
 #pragma once
-// `--cost time|instructions|cycles` of `run`, `sweep` and `ab` (README, "Counted cost").
+// `--cost time|instructions|cycles` of `run`, `sweep` and `ab` (docs/guide.md, "Counted cost").
 #include <string>
 
 #include <CLI/CLI.hpp>

@@ -1,5 +1,5 @@
 // `aoreplay import renderdoc FILE.rdc...`: a bug frame captured with RenderDoc becomes an aoreplay
-// capture (replay/import/, README "From a RenderDoc capture").
+// capture (replay/import/, docs/renderdoc.md).
 #include <cstdio>
 #include <map>
 #include <memory>

@@ -1,5 +1,5 @@
-// `aoreplay tune`: fits a technique's constants to the captures' ray-traced references (README,
-// "Tuning"). Every candidate is a real replay of every training capture; the search is in
+// `aoreplay tune`: fits a technique's constants to the captures' ray-traced references
+// (docs/tuning.md). Every candidate is a real replay of every training capture; the search is in
 // tune/tuner.h, the outputs in report/tune_report.h.
 #include <algorithm>
 #include <chrono>

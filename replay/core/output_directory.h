@@ -1,6 +1,6 @@
 #pragma once
 // Output folders and files that neither a careless --out, a second run nor a kill can break
-// (README.md, "Outputs"):
+// (docs/robustness.md, "Outputs and inputs"):
 //   - a folder is replaced only when everything in it is something aoreplay wrote there: a result
 //     carries .aoreplay-result.json listing its entries; an older result without it qualifies when
 //     its main file (report.json, sweep.json, capture.json) is aoreplay's and every entry is one

@@ -1,5 +1,5 @@
 #pragma once
-// Counted cost (README, "Counted cost"): on a CPU device every shader is machine code, so the work
+// Counted cost (docs/guide.md, "Counted cost"): on a CPU device every shader is machine code, so the work
 // of a pass can be counted instead of timed. aoreplay re-executes itself under valgrind's
 // callgrind with instrumentation off (cost/launcher.h); inside, a CallgrindCounter brackets
 // each counted submission: the device's thread left to settle, counters zeroed and

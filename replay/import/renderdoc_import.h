@@ -1,7 +1,7 @@
 #pragma once
 // `aoreplay import renderdoc`: turns one frame of each RenderDoc capture (.rdc) into a frame of an
 // aoreplay capture (format v1): the depth attachment, optionally a normal target, and the camera
-// matrices from uniform-block members of the draw's shaders. README "From a RenderDoc capture".
+// matrices from uniform-block members of the draw's shaders. docs/renderdoc.md.
 #include <cstdio>
 #include <filesystem>
 #include <optional>

@@ -5,7 +5,7 @@
 // linear grey (v, v, v). For grey input the paper's opponent-space chroma channels are zero, and
 // its colour pipeline reduces to the HyAB distance between the CIELAB lightness of the two
 // CSF-filtered luminances; its feature pipeline (edges and points of the luminance) is unchanged.
-// Checked against NVIDIA's own FLIP tool (README, "Tuning": the command and the numbers).
+// Checked against NVIDIA's own FLIP tool (docs/tuning.md: the command and the numbers).
 #include <cstdint>
 #include <vector>
 

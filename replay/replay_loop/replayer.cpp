@@ -251,7 +251,7 @@ void poisonHistory(const FrameBuilder::Setup& setup, graph::ImageDesc desc, Phys
 // graph of a frame with history is built and recorded too, which creates the pipelines every later
 // frame uses. Pipeline creation (about 17 ms on lavapipe) then never lands in a frame's time;
 // lavapipe's compile to machine code happens at a shader's first dispatch, so there that part still
-// lands in the first frame (README, setup_ms).
+// lands in the first frame (docs/outputs.md, setup_ms).
 void prepareFirstFrame(FrameBuilder::Setup setup, PipelineCache& pipelines, PhysicalResources& resources,
                        GraphExecutor& executor, const FrameBuffers& buffers) {
   compileAndRecord(buildFrame(pipelines, setup, buffers).graph, resources, executor);

@@ -22,7 +22,7 @@
 
 namespace aor {
 
-// How the frames of a replay are ordered against the tool's own work (README, "Timing").
+// How the frames of a replay are ordered against the tool's own work (docs/guide.md, "Timing").
 enum class TimingMode {
   Auto,        // Isolated on a CPU device (lavapipe, llvmpipe, SwiftShader), Overlapped on a GPU
   Isolated,    // each chunk of frames decoded before its GPU work and sunk after: nothing of the

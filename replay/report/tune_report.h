@@ -1,5 +1,5 @@
 #pragma once
-// What `aoreplay tune` writes (README, "Tuning"): tune.json, every error figure and the search,
+// What `aoreplay tune` writes (docs/tuning.md): tune.json, every error figure and the search,
 // bit-identical for the same inputs on the same device; tune_times.json, the GPU times, which are
 // measurements and differ run to run; and two plots.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// A settings file (format "aoreplay-settings", version 1; README, "Tuning"): a technique, a preset,
+// A settings file (format "aoreplay-settings", version 1; docs/tuning.md): a technique, a preset,
 // key values and a radius scale, applied to any capture. `aoreplay tune` writes one; `run`, `graph`
 // and `sweep` read it with --settings FILE (and `ab` through its sides' run arguments).
 //   { "format": "aoreplay-settings", "version": 1, "technique": "gtao", "preset": "high",

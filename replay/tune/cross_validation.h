@@ -1,5 +1,5 @@
 #pragma once
-// `tune --cv` (README, "Tuning"): leave-one-capture-out cross-validation. Each fold tunes on every
+// `tune --cv` (docs/tuning.md): leave-one-capture-out cross-validation. Each fold tunes on every
 // capture but one and scores the one left out before and after; the fit on all captures is
 // recommended only when no fold's held-out objective got worse than the defaults' by more than a
 // margin, else the defaults are (the worst such fold named).

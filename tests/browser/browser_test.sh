@@ -3,7 +3,7 @@
 # capture, checked by check_pages.py (no console error, no failed load, key elements present),
 # screenshotted; then two pages broken on purpose must fail the same check.
 #   browser_test.sh AOREPLAY WORKDIR [SCREENSHOT_DIR]
-# With SCREENSHOT_DIR (the README's are docs/screenshots/) the screenshots are copied there.
+# With SCREENSHOT_DIR (docs/outputs.md shows those in docs/screenshots/) the screenshots are copied there.
 set -euo pipefail
 aoreplay=$1 work=$2 publish=${3:-}
 here=$(cd "$(dirname "$0")" && pwd)

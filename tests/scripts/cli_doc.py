@@ -16,7 +16,7 @@ HEADER = """# aoreplay command-line reference
 
 Generated from `aoreplay --help` and each command's `--help` by `tests/scripts/cli_doc.py`; do not
 edit: `python3 tests/scripts/cli_doc.py build/replay/aoreplay docs/cli.md` regenerates it, and the
-ctest `cli_doc` fails when it differs from the binary. The README says what the commands are for;
+ctest `cli_doc` fails when it differs from the binary. docs/guide.md says what the commands are for;
 docs/outputs.md what they write.
 """
 

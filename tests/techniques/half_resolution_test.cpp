@@ -1,4 +1,4 @@
-// half_res=1 (shaders/README.md, "Half resolution"): GTAO on one pixel of each 2x2 block against
+// half_res=1 (shaders/docs/guide.md, "half_res"): GTAO on one pixel of each 2x2 block against
 // its CPU mirror, the upsample's bounds, determinism and cuts, and the error it costs against the
 // ray-traced reference.
 #include <algorithm>

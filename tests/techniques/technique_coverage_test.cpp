@@ -119,7 +119,7 @@ TEST(TechniqueKeys, TechniquesJsonListsEveryKeyWithItsDefaultAndRange) {
     EXPECT_EQ(keys, expected->second) << t["name"];
   }
   for (const auto& [name, keys] : kExpectedKeys) EXPECT_TRUE(listed.count(name)) << name;
-  // gtao's documented defaults and ranges (README): slices 3 in [1, 32], falloff 0.615, temporal 0.9 in [0, 0.98].
+  // gtao's documented defaults and ranges (docs/guide.md): slices 3 in [1, 32], falloff 0.615, temporal 0.9 in [0, 0.98].
   for (const auto& t : list)
     if (t["name"] == "gtao")
       for (const auto& p : t["parameters"]) {

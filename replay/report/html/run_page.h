@@ -1,5 +1,5 @@
 #pragma once
-// report.html of `aoreplay run`: everything report.json says, drawn (README.md, "Reports"):
+// report.html of `aoreplay run`: everything report.json says, drawn (docs/outputs.md, "Reports a person reads"):
 // device, capture, technique and settings; per-pass GPU time (median bars with min-max whiskers)
 // and per frame; selected frames' AO beside the reference with the error heat map and the change
 // from the previous frame; error and temporal metrics over time with history resets marked and
