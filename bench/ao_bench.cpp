@@ -350,8 +350,7 @@ ScalingInput scalingInput() {
 }
 
 CostMeasure parseCostMeasure(const std::string& name) {
-  for (CostMeasure m : {CostMeasure::Time, CostMeasure::Instructions, CostMeasure::Cycles})
-    if (name == costMeasureName(m)) return m;
+  if (auto measure = costMeasureNamed(name)) return *measure;
   throw InputError("", std::nullopt, "--cost", fmt::format("'{}' is not time, instructions or cycles", name));
 }
 

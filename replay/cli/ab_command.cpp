@@ -15,6 +15,7 @@
 #include "capture/capture.h"
 #include "core/input_error.h"
 #include "cli/commands.h"
+#include "cost/callgrind_counter.h"
 #include "cli/compare_command.h"
 #include "report/html/compare_page.h"
 #include "cli/handlers.h"
@@ -165,6 +166,12 @@ int abCommand(const AbArgs& args) {
   return status;
 }
 
+std::vector<std::string> costMeasureNames() {
+  std::vector<std::string> names;
+  for (CostMeasure m : kCostMeasures) names.push_back(costMeasureName(m));
+  return names;
+}
+
 }  // namespace
 
 void registerAbCommand(CLI::App& app) {
@@ -185,7 +192,7 @@ void registerAbCommand(CLI::App& app) {
   cmd->add_option("--cost", args->cost,
                   "time, or instructions or cycles: every run counted under callgrind on lavapipe (run --cost), "
                   "judged exactly; one round then suffices")
-      ->check(CLI::IsMember({"time", "instructions", "cycles"}))
+      ->check(CLI::IsMember(costMeasureNames()))
       ->capture_default_str();
   addCompareFlags(*cmd, args->flags);
   handlers()["ab"] = [args] { return abCommand(*args); };

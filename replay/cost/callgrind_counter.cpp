@@ -23,6 +23,12 @@ const char* costMeasureName(CostMeasure measure) {
   return "?";
 }
 
+std::optional<CostMeasure> costMeasureNamed(std::string_view name) {
+  for (CostMeasure m : kCostMeasures)
+    if (name == costMeasureName(m)) return m;
+  return std::nullopt;
+}
+
 namespace {
 
 uint64_t event(const EventCounts& counts, const char* name) {

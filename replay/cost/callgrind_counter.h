@@ -11,16 +11,22 @@
 // thread synchronisation. Those two take paths that depend on what the heap and the other threads
 // were doing (which free list a block comes from, whether a lock was contended), so they differ
 // between processes by tens to hundreds of instructions a pass; without them counts are exact.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 
 namespace aor {
 
 enum class CostMeasure { Time, Instructions, Cycles };
+inline constexpr std::array<CostMeasure, 3> kCostMeasures = {CostMeasure::Time, CostMeasure::Instructions,
+                                                             CostMeasure::Cycles};
 const char* costMeasureName(CostMeasure measure);  // "time", "instructions", "cycles"
+// The measure a command line names, or nothing.
+std::optional<CostMeasure> costMeasureNamed(std::string_view name);
 
 // Callgrind's event counts: Ir, and with its cache simulation Dr, Dw, I1mr, D1mr, D1mw, ILmr,
 // DLmr, DLmw.

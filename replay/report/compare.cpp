@@ -199,13 +199,14 @@ double TimingSeries::runValue() const { return runMs ? *runMs : medianOf(samples
 
 double PassComparison::ratio() const { return std::exp(logRatio); }
 
-TimingSamples loadTimingSamples(const fs::path& path) {
-  auto doc = readJsonFile(path);
+TimingSamples timingSamplesOf(const nlohmann::json& doc, const fs::path& path) {
   if (doc.is_object() && doc.contains("benchmarks") && doc["benchmarks"].is_array()) return fromBenchmark(doc, path);
   if (doc.is_object() && memberOr<std::string>(doc, "tool", "", path, "") == "aoreplay") return fromReport(doc, path);
   throw InputError(path.string(), std::nullopt, "",
                    "neither an aoreplay report.json (\"tool\": \"aoreplay\") nor Google Benchmark JSON (\"benchmarks\")");
 }
+
+TimingSamples loadTimingSamples(const fs::path& path) { return timingSamplesOf(readJsonFile(path), path); }
 
 namespace {
 
@@ -228,22 +229,34 @@ std::vector<fs::path> reportsUnder(const fs::path& folder) {
 
 }  // namespace
 
-RunMeasure loadRunMeasure(const fs::path& path) {
-  auto doc = readJsonFile(path);
+RunMeasure runMeasureOf(const nlohmann::json& doc, const fs::path& path) {
   if (doc.is_object() && memberOr<std::string>(doc, "tool", "", path, "") == "aoreplay") return measureOfReport(doc, path);
   if (doc.is_object() && doc.contains("benchmarks")) return measureOfBenchmark(doc, path);
   return {};
 }
 
+RunMeasure loadRunMeasure(const fs::path& path) { return runMeasureOf(readJsonFile(path), path); }
+
+namespace {
+
+// One run's file, read once for both its values and its measure.
+RunTimings loadRun(const fs::path& path) {
+  const auto doc = readJsonFile(path);
+  auto samples = timingSamplesOf(doc, path);
+  return {path.string(), std::move(samples), runMeasureOf(doc, path)};
+}
+
+}  // namespace
+
 SideTimings loadSide(const fs::path& path) {
   SideTimings side{path.string(), {}};
   std::error_code ec;
   if (!fs::is_directory(path, ec)) {
-    side.runs.push_back({path.string(), loadTimingSamples(path), loadRunMeasure(path)});
+    side.runs.push_back(loadRun(path));
     return side;
   }
   for (const auto& report : reportsUnder(path))
-    side.runs.push_back({report.string(), loadTimingSamples(report), loadRunMeasure(report)});
+    side.runs.push_back(loadRun(report));
   if (side.runs.empty())
     throw InputError(path.string(), std::nullopt, "", "holds no report.json (a folder's runs are its report.json files, searched recursively)");
   return side;

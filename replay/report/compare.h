@@ -28,6 +28,8 @@ using TimingSamples = std::vector<TimingSeries>;  // in file order
 // uses it; a name whose first segment is a host-copy pass is a host copy). Throws InputError
 // naming the file and field.
 TimingSamples loadTimingSamples(const std::filesystem::path& path);
+// The same from a file already parsed (`path` names it in errors).
+TimingSamples timingSamplesOf(const nlohmann::json& doc, const std::filesystem::path& path);
 
 // What a run's values measure: milliseconds ("time"), or a count under callgrind ("instructions",
 // "cycles") with report.json's "cost" block, which names everything the counts depend on.
@@ -39,6 +41,7 @@ struct RunMeasure {
 // A run's measure: report.json's "cost" block, Google Benchmark JSON's context "aoreplay_cost"
 // (ao_bench --cost=...); else time.
 RunMeasure loadRunMeasure(const std::filesystem::path& path);
+RunMeasure runMeasureOf(const nlohmann::json& doc, const std::filesystem::path& path);
 
 struct RunTimings {
   std::string source;  // the file

@@ -66,10 +66,10 @@ ReportInput readReportInput(const fs::path& path) {
   key.device = text(report, "device.name", path);
   key.driver = text(report, "device.driver", path);
   key.toolVersion = text(report, "tool_version", path);
-  const RunMeasure measure = loadRunMeasure(path);
+  const RunMeasure measure = runMeasureOf(report, path);
   key.measure = measure.name;
   if (measure.counted()) key.costKey = measure.dependencies.value("key", std::string());
-  input.passes = loadTimingSamples(path);
+  input.passes = timingSamplesOf(report, path);
   if (input.passes.empty()) throw InputError(path.string(), std::nullopt, "passes", "is empty: nothing was timed");
   return input;
 }
