@@ -80,8 +80,7 @@ int tuneCommand(const TuneArgs& args) {
   std::vector<fs::path> inputs;
   for (const auto& c : captureFoldersOf(args.captures)) training.push_back(loadTuneCapture(c, request.frames));
   for (const auto& c : captureFoldersOf(args.holdout)) holdout.push_back(loadTuneCapture(c, request.frames));
-  if (args.crossValidate && training.size() < 2)
-    throw InputError("", std::nullopt, "--cv", "cross-validation leaves one capture out per fold: give at least two captures");
+  if (args.crossValidate) requireFolds(training.size());  // before any output folder or device
   for (const auto* list : {&training, &holdout})
     for (const auto& t : *list) inputs.push_back(t.capture.folder);
   TuneRun run = planTuning(request, args.limits, training, holdout);

@@ -1,5 +1,5 @@
 #pragma once
-// Counted cost's outer process: `run --cost instructions|cycles` re-executes the same command
+// Counted cost's outer process: `run`, `sweep` and ao_bench with --cost instructions|cycles re-execute the same command
 // under valgrind's callgrind (instrumentation off at start) in an environment that makes counts
 // exact (one lavapipe thread, no shader disk cache), waits for it and passes its exit status on.
 // The child does the whole run, holds --out's lock and writes every output; SIGINT, SIGTERM and

@@ -13,6 +13,11 @@ int refusedFold(const std::vector<CrossValidationFold>& folds, double margin) {
   return worst;
 }
 
+void requireFolds(size_t captures) {
+  if (captures < 2)
+    throw InputError("", std::nullopt, "--cv", "cross-validation leaves one capture out per fold: give at least two captures");
+}
+
 namespace {
 
 std::vector<TuneCapture> allBut(const std::vector<TuneCapture>& captures, size_t left) {
@@ -27,8 +32,7 @@ std::vector<TuneCapture> allBut(const std::vector<TuneCapture>& captures, size_t
 CrossValidation crossValidate(VulkanContext& vk, const TuneRequest& request, const TuneLimits& limits,
                               const std::vector<TuneCapture>& captures, double margin,
                               const std::function<void(size_t, size_t)>& foldStarted) {
-  if (captures.size() < 2)
-    throw InputError("", std::nullopt, "--cv", "cross-validation leaves one capture out per fold: give at least two captures");
+  requireFolds(captures.size());
   CrossValidation cv;
   cv.margin = margin;
   for (size_t i = 0; i < captures.size(); ++i) {

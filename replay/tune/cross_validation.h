@@ -36,7 +36,10 @@ inline constexpr double kDefaultCrossValidationMargin = 0.02;
 // The fold whose held-out objective rose by the most over before x (1 + margin), or -1 when none did.
 int refusedFold(const std::vector<CrossValidationFold>& folds, double margin);
 
-// One fold per capture (at least two: InputError naming --cv otherwise), each a whole tuning of the
+// InputError naming --cv unless there are at least two captures (one fold leaves one out).
+void requireFolds(size_t captures);
+
+// One fold per capture (at least two: requireFolds), each a whole tuning of the
 // others under `limits`; `foldStarted(i, n)` is called before fold i of n.
 CrossValidation crossValidate(VulkanContext& vk, const TuneRequest& request, const TuneLimits& limits,
                               const std::vector<TuneCapture>& captures, double margin,
