@@ -89,7 +89,7 @@ TEST(CountedCost, CyclesPinTheCacheAndExceedInstructions) {
 
 TEST(CountedCost, OptionsThatMakeNoSenseWithCountsAreRefused) {
   const std::string base = "run " + capture() + " --frames 0:1 --no-images --cost instructions --out " + outDir("refused").string();
-  for (const std::string& extra : {"--repeat 2", "--overlap", "--validate"}) {
+  for (const std::string extra : {"--repeat 2", "--overlap", "--validate"}) {
     auto r = runAoreplay(base + " " + extra);
     EXPECT_EQ(r.exitCode, 2) << extra << "\n" << r.output;
     EXPECT_NE(r.output.find(extra.substr(0, extra.find(' '))), std::string::npos) << r.output;
