@@ -72,8 +72,12 @@ TEST(CountedCost, MoreSlicesCountMoreInGtaoAloneAndCompareSaysSo) {
   EXPECT_EQ(verdicts["measure"], "instructions");
   EXPECT_EQ(verdicts["level"], "counts");
   for (const auto& p : verdicts["passes"]) {
-    if (p["name"] == "gtao") EXPECT_EQ(p["verdict"], "slower");
-    if (p["name"] == "linearize_depth") EXPECT_EQ(p["verdict"], "same");
+    if (p["name"] == "gtao") {
+      EXPECT_EQ(p["verdict"], "slower");
+    }
+    if (p["name"] == "linearize_depth") {
+      EXPECT_EQ(p["verdict"], "same");
+    }
   }
 }
 
