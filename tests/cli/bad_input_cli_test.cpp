@@ -350,7 +350,7 @@ TEST(BadInputCli, CommitPositionsEveryExportCannotPrintAreRefusedWhenRecorded) {
   const fs::path dir = scratchDir("positions");
   const std::string report = oneFrameReport(dir);
   const std::string db = (dir / "s.db").string();
-  for (const std::string& position : {"--ordinal 253402300800", "--ordinal 99999999999999999999", "--ordinal -1",
+  for (const std::string position : {"--ordinal 253402300800", "--ordinal 99999999999999999999", "--ordinal -1",
                                       "--date @253402300800", "--date @-99999999999999999999", "--date 0000-12-31"}) {
     auto r = runAoreplay(fmt::format("record {} --db {} --commit abc {}", report, db, position));
     EXPECT_EQ(r.exitCode, 2) << position << "\n" << r.output;

@@ -66,7 +66,9 @@ TEST(ChangePoints, StepIsNamedAtItsCommit) {
         EXPECT_LT(p.lower, p.ratio);
         EXPECT_GT(p.upper, p.ratio);
       }
-      if (p.pass == "blur") EXPECT_FALSE(p.changed) << "seed " << seed;
+      if (p.pass == "blur") {
+        EXPECT_FALSE(p.changed) << "seed " << seed;
+      }
     }
   }
 }
